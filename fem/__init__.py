@@ -1,0 +1,1 @@
+"""Meshes, linear elasticity, compliance and contact. Imports `geometry` only."""

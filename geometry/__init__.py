@@ -1,0 +1,1 @@
+"""Tooth-surface geometry and kinematics: pure numpy/scipy, imports nothing else of ours."""

@@ -1,0 +1,1 @@
+"""Face-milled spiral bevel gears: blank, head cutter, cradle machine, generation, synthesis."""
