@@ -1,0 +1,228 @@
+"""Flank compliance of one gear body: FE far field on a coarse flank grid plus the half-space near field.
+
+The body (the teeth that can touch plus one neighbour each side, rim down to the bore, fixed there)
+is meshed once, factorised once, and loaded by a unit normal force spread over a small patch around
+each node of a coarse grid on the loaded flanks. The FE displacement is read not at the flank but at
+points a depth ``d`` below it, where the coarse mesh is already accurate (Saint-Venant); the local
+part is added from the half-space solution (DESIGN.md "Near field", after Vijayakar, IJNME 31 (1991)):
+
+    C_ij = C_FE(j -> y_i) + [C_HS(j -> x_i) - C_HS(j -> y_i)],   y_i = x_i - d n_i.
+
+The FE part is stored on the grid and interpolated bilinearly (in flank arc length and axial position)
+to any contact cell, for the source and the receiver alike, so one factorisation serves every mesh
+position and every micro-geometry change. Root stress responses at fillet points are stored from the
+same solves, for superposition.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from geometry.cylindrical import flank_point_normal
+from .elastic import assemble_stiffness, interpolation_matrix, patch_loads, stress_matrix
+from .mesh import SegmentSpec, build_segment
+from .solver import factorize
+
+__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "arc_length", "radius_of_arc"]
+
+
+def arc_length(r: np.ndarray, r_base: float) -> np.ndarray:
+    """Involute arc length from the base circle, s = (r^2 - r_b^2) / (2 r_b) (mm)."""
+    return (np.asarray(r, float) ** 2 - r_base ** 2) / (2.0 * r_base)
+
+
+def radius_of_arc(s: np.ndarray, r_base: float) -> np.ndarray:
+    """Inverse of :func:`arc_length`."""
+    return np.sqrt(r_base ** 2 + 2.0 * r_base * np.asarray(s, float))
+
+
+@dataclass(frozen=True)
+class ComplianceSpec:
+    """What to model for one body and at which fidelity (mm, MPa)."""
+    teeth: tuple[int, ...]        # teeth in the FE segment (loaded ones plus a neighbour each side)
+    loaded: tuple[int, ...]       # teeth whose `side` flank carries load
+    side: int                     # +1 right flank, -1 left flank
+    r_range: tuple[float, float]  # radii of the loaded flank grid (form radius .. tip), mm
+    grid: tuple[int, int]         # (profile, face) grid nodes per loaded flank
+    face_width: float
+    r_bore: float                 # bore radius (internal gear: outer rim radius)
+    h_flank: float
+    h_body: float
+    depth: float                  # matching depth d of the near-field correction, mm
+    young: float
+    poisson: float
+    root_points: tuple[int, int] = (10, 7)   # fillet points (along fillet, along face) per loaded tooth
+
+
+@dataclass
+class BodyCompliance:
+    """FE compliance of one body on its flank grid, and root-stress influence.
+
+    Attributes
+    ----------
+    spec : ComplianceSpec
+    s_grid, z_grid : ndarray (ns,), (nz,)
+        Grid arc lengths (mm, from the base circle) and axial positions (mm).
+    C : ndarray (n, n)
+        Normal displacement into the body at the depth point of grid node i per newton of normal
+        force at grid node j, mm/N; n = len(loaded) * ns * nz, ordered (tooth, s, z).
+    depth : ndarray (ns,)
+        Matching depth used per profile row, mm.
+    root_points : ndarray (m, 3); root_tooth : ndarray (m,)
+    root_stress : ndarray (m, 6, n)
+        Voigt stress (xx, yy, zz, yz, xz, xy) at the root points per newton at grid node j, MPa/N.
+    mesh, factorization, patch : kept for the VTU of a loaded position.
+    timings : dict, seconds of mesh, assembly, factorisation, solves.
+    """
+    spec: ComplianceSpec
+    s_grid: np.ndarray
+    z_grid: np.ndarray
+    C: np.ndarray
+    depth: np.ndarray
+    root_points: np.ndarray
+    root_tooth: np.ndarray
+    root_stress: np.ndarray
+    n_dofs: int
+    mesh: object = field(repr=False, default=None)
+    factorization: object = field(repr=False, default=None)
+    patch: object = field(repr=False, default=None)
+    timings: dict = field(default_factory=dict)
+
+    def weights(self, tooth: np.ndarray, s: np.ndarray, z: np.ndarray) -> sp.csr_matrix:
+        """Bilinear interpolation weights (n_cells, n_grid) of cells at (tooth, s, z) on the grid.
+
+        Cells outside the grid are clamped to its border; cells on a tooth that is not loaded get
+        zero weight (the caller must not put contact there)."""
+        ns, nz = len(self.s_grid), len(self.z_grid)
+        loaded = np.asarray(self.spec.loaded)
+        tooth = np.asarray(tooth)
+        t_idx = np.searchsorted(loaded, tooth)
+        ok = (t_idx < len(loaded)) & (loaded[np.clip(t_idx, 0, len(loaded) - 1)] == tooth)
+        fs = np.clip(np.interp(s, self.s_grid, np.arange(ns)), 0, ns - 1 - 1e-12)
+        fz = np.clip(np.interp(z, self.z_grid, np.arange(nz)), 0, nz - 1 - 1e-12)
+        i0, j0 = np.floor(fs).astype(int), np.floor(fz).astype(int)
+        ws, wz = fs - i0, fz - j0
+        rows, cols, vals = [], [], []
+        n = len(s)
+        base = np.clip(t_idx, 0, len(loaded) - 1) * ns * nz
+        for di, wi in ((0, 1 - ws), (1, ws)):
+            for dj, wj in ((0, 1 - wz), (1, wz)):
+                rows.append(np.arange(n))
+                cols.append(base + (i0 + di) * nz + (j0 + dj))
+                vals.append(np.where(ok, wi * wj, 0.0))
+        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                             shape=(n, len(loaded) * ns * nz))
+
+
+def _fillet_points(profile, side: int, count: tuple[int, int], face_width: float, internal: bool):
+    """Points 0.05 mm inside the `side` fillet (transverse outline kind 1), (m, 3) for tooth 0."""
+    xy, kind, sd = np.asarray(profile.xy), np.asarray(profile.kind), np.asarray(profile.side)
+    idx = np.flatnonzero((kind == 1) & (sd == side))
+    if idx.size < 2:
+        idx = np.flatnonzero((kind == 0) & (sd == side))
+    if idx.size < 2:
+        return np.zeros((0, 3))
+    pick = idx[np.linspace(0, idx.size - 1, count[0]).round().astype(int)]
+    t = xy[np.clip(pick + 1, 0, len(xy) - 1)] - xy[np.clip(pick - 1, 0, len(xy) - 1)]
+    t /= np.linalg.norm(t, axis=1, keepdims=True)
+    inward = np.stack([t[:, 1], -t[:, 0]], 1) * (-1.0 if internal else 1.0)
+    p2 = xy[pick] + 0.05 * inward
+    z = np.linspace(-0.45 * face_width, 0.45 * face_width, count[1])
+    twist = np.tan(profile.beta) / profile.r_ref
+    ang = twist * z[None, :]
+    c, s = np.cos(ang), np.sin(ang)
+    x = c * p2[:, 0, None] - s * p2[:, 1, None]
+    y = s * p2[:, 0, None] + c * p2[:, 1, None]
+    return np.stack([x, y, np.broadcast_to(z, x.shape)], -1).reshape(-1, 3)
+
+
+def _rotate_tooth(points: np.ndarray, tooth: int, z: int) -> np.ndarray:
+    a = -tooth * 2 * np.pi / z
+    R = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1.0]])
+    return points @ R.T
+
+
+def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None) -> BodyCompliance:
+    """Mesh, assemble, factorise and load one gear body; see the module docstring.
+
+    Parameters
+    ----------
+    profile : geometry.involute.ToothProfile
+    spec : ComplianceSpec
+    cache_dir : path, optional
+        Mesh cache directory.
+    progress : callable(str), optional
+        Called with a short message at each step.
+    """
+    say = progress or (lambda msg: None)
+    t = {}
+    t0 = time.perf_counter()
+    seg = SegmentSpec(outline=np.asarray(profile.xy), kind=np.asarray(profile.kind, np.int8),
+                      side=np.asarray(profile.side, np.int8), z=profile.z, teeth=tuple(spec.teeth),
+                      r_bore=spec.r_bore, face_width=spec.face_width,
+                      lead_twist=float(np.tan(profile.beta) / profile.r_ref), internal=profile.internal,
+                      h_flank=spec.h_flank, h_body=spec.h_body)
+    mesh = build_segment(seg, cache_dir=cache_dir)
+    t["mesh"] = time.perf_counter() - t0
+    say(f"meshed z={profile.z}: {len(mesh.nodes)} nodes, {len(mesh.tets)} tets, {3 * len(mesh.nodes)} dofs "
+        f"({t['mesh']:.1f} s)")
+    t0 = time.perf_counter()
+    K = assemble_stiffness(mesh.nodes, mesh.tets, spec.young, spec.poisson)
+    t["assembly"] = time.perf_counter() - t0
+    fixed_name = "rim" if profile.internal else "bore"
+    fixed_nodes = np.unique(mesh.facets[fixed_name])
+    fixed = (3 * fixed_nodes[:, None] + np.arange(3)).ravel()
+    t0 = time.perf_counter()
+    fact = factorize(K, fixed)
+    t["factorisation"] = time.perf_counter() - t0
+    say(f"assembled ({t['assembly']:.1f} s) and factorised with {fact.method} ({t['factorisation']:.1f} s)")
+
+    # ---- the flank grid, its depth points and the patch loads
+    t0 = time.perf_counter()
+    ns, nz = spec.grid
+    rb = profile.r_base
+    s_grid = np.linspace(arc_length(spec.r_range[0], rb), arc_length(spec.r_range[1], rb), ns)
+    r_grid = radius_of_arc(s_grid, rb)
+    b = spec.face_width
+    z_grid = np.linspace(-0.5 * b, 0.5 * b, nz)
+    # matching depth, at most 30 % of the local tooth thickness (the tooth gets thin near the tip)
+    half_angle = np.abs(profile.flank_angle(r_grid, spec.side))
+    thick = 2 * r_grid * np.sin(np.clip(half_angle, 0, np.pi / 2))
+    depth = np.minimum(spec.depth, 0.3 * thick)
+    pts, nrm = [], []
+    for k in spec.loaded:
+        P, N = flank_point_normal(profile, spec.side, r_grid[:, None], z_grid[None, :], tooth=k)
+        pts.append(P.reshape(-1, 3))
+        nrm.append(N.reshape(-1, 3))
+    X, Nn = np.concatenate(pts), np.concatenate(nrm)
+    Y = X - np.tile(np.repeat(depth, nz), len(spec.loaded))[:, None] * Nn
+    names = [f"{kind}_{k}_{'right' if spec.side > 0 else 'left'}" for k in spec.loaded
+             for kind in ("flank", "fillet")] + [f"tip_{k}" for k in spec.loaded]
+    tri = np.concatenate([mesh.facets[n] for n in names if n in mesh.facets])
+    ds = max(np.diff(s_grid).max(), np.diff(z_grid).max())
+    F = patch_loads(mesh.nodes, tri, X, -Nn, 0.75 * ds)
+    Pm = interpolation_matrix(mesh.nodes, mesh.tets, Y)
+    n = len(X)
+    O = sp.csr_matrix((-Nn.ravel(), (np.repeat(np.arange(n), 3), np.arange(3 * n))), shape=(n, 3 * n)) @ Pm
+    roots, root_tooth = [], []
+    base = _fillet_points(profile, spec.side, spec.root_points, b, profile.internal)
+    for k in spec.loaded:
+        roots.append(_rotate_tooth(base, k, profile.z))
+        root_tooth.append(np.full(len(base), k))
+    R = np.concatenate(roots) if roots else np.zeros((0, 3))
+    S = stress_matrix(mesh.nodes, mesh.tets, spec.young, spec.poisson, R) if len(R) else sp.csr_matrix((0, K.shape[0]))
+    t["setup"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    out = fact.solve(F, observe=sp.vstack([O, S]).tocsr())
+    t["solves"] = time.perf_counter() - t0
+    say(f"{n} unit loads solved ({t['solves']:.1f} s)")
+    C = out[:n]
+    # Maxwell-Betti reciprocity holds between loads and reads at the same points; here the reads sit a
+    # depth d below the loads, which breaks symmetry only in the near field that the half-space term
+    # replaces anyway: keep the symmetric part so the contact matrix stays symmetric positive definite.
+    C = 0.5 * (C + C.T)
+    return BodyCompliance(spec, s_grid, z_grid, C, depth, R, np.concatenate(root_tooth) if roots else
+                          np.zeros(0, int), out[n:].reshape(len(R), 6, n), K.shape[0], mesh, fact, F, t)

@@ -1,0 +1,296 @@
+"""Loaded tooth contact analysis of cylindrical pairs: compliance once, contact per mesh position.
+
+At each position the contact cells are narrow strips on the pinion's driving flank, one per face
+slice and tooth, centred on the unloaded contact line and a few Hertz half-widths wide. Their gaps
+come from the separation field (both members' micro-geometry and errors included), their compliance
+from the two bodies' FE grids (bilinear interpolation) plus the half-space near field, and the
+complementarity problem with torque balance gives the cell forces and the loaded rotation.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fem.compliance import BodyCompliance, ComplianceSpec, arc_length, body_compliance
+from fem.contact import ContactNotConverged, solve_contact
+from fem.halfspace import near_field_correction
+from geometry.cylindrical import flank_point_normal
+
+from .errors import ConvergenceError
+from .model import PairModel
+from .tca import ARCSEC, flank_gaps, unloaded_tca
+
+__all__ = ["Fidelity", "LoadedModel", "PositionResult", "prepare", "solve_position", "hertz_line"]
+
+
+@dataclass(frozen=True)
+class Fidelity:
+    """The knobs of one analysis (lengths in mm)."""
+    h_flank: float          # FE element size at the flanks
+    h_body: float           # FE element size far from the teeth
+    grid: tuple[int, int]   # compliance grid per loaded flank (profile, face)
+    cells_per_b: float      # contact cells per nominal Hertz half-width (profile direction)
+    slices: int             # contact cells along the face
+    near_field: bool        # half-space near-field correction on/off
+    depth: float            # matching depth of the correction, mm
+    window: float = 3.0     # strip half-width in nominal Hertz half-widths
+
+    @staticmethod
+    def from_preset(params: dict, module: float, **override) -> "Fidelity":
+        p = dict(params)
+        p.update({k: v for k, v in override.items() if v is not None})
+        h = p["h_flank"] * module if p["h_flank"] < 1.0 and "abs" not in p else p["h_flank"]
+        return Fidelity(h_flank=h, h_body=p["h_body"] * module, grid=tuple(p["grid"]),
+                        cells_per_b=p["cells_per_b"], slices=p["slices"], near_field=p["near_field"],
+                        depth=p.get("depth", 1.5 * h) if p["near_field"] else 0.0)
+
+
+def hertz_line(w: float, R: float, E: float, nu: float) -> tuple[float, float]:
+    """Hertz line contact of two equal materials: half-width b (mm) and peak p0 (MPa) for load w (N/mm).
+
+    b = sqrt(4 w R / (pi E*)), p0 = 2 w / (pi b), 1/E* = 2 (1 - nu^2)/E (Johnson, Contact Mechanics, 4.2).
+    """
+    Es = E / (2 * (1 - nu ** 2))
+    b = np.sqrt(4 * w * R / (np.pi * Es))
+    return float(b), float(2 * w / (np.pi * b))
+
+
+@dataclass
+class LoadedModel:
+    """The pair with both bodies' compliance, ready for any number of positions and torques."""
+    model: PairModel
+    fid: Fidelity
+    teeth1: tuple[int, ...]
+    teeth2: tuple[int, ...]
+    body1: BodyCompliance
+    body2: BodyCompliance
+    b_nom: float
+    R_nom: float
+    timings: dict = field(default_factory=dict)
+
+
+def _teeth_in_mesh(model: PairModel, rolls: np.ndarray, cap: float):
+    tca = unloaded_tca(model, rolls, teeth=range(-3, 4), ns=120, nz=5)
+    near = np.isfinite(tca.min_gap) & (tca.min_gap < cap)
+    teeth1 = tuple(int(k) for k in tca.teeth[near.any(axis=0)])
+    s_lo = arc_length(model.pinion_range()[0], model.pinion.r_base)
+    s_hi = arc_length(model.pinion_range()[1], model.pinion.r_base)
+    g2 = set()
+    for roll in rolls[:: max(1, len(rolls) // 8)].tolist() + [rolls[-1]]:
+        for k in teeth1:
+            fg = flank_gaps(model, model.phi_pitch - roll, k, np.linspace(s_lo, s_hi, 60), 0.0)
+            g2.update(int(t) for t in np.unique(fg.gear_tooth[np.isfinite(fg.gap) & (fg.gap < 2 * cap)]))
+    return tca, teeth1, tuple(sorted(g2))
+
+
+def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, cache_dir=None,
+            progress=None) -> LoadedModel:
+    """Choose the teeth in mesh over ``rolls`` and compute both bodies' compliance (the costly step)."""
+    say = progress or (lambda m: None)
+    case = model.case
+    t0 = time.perf_counter()
+    p1, p2 = model.pinion, model.gear
+    b = model.face_width
+    w_nom = torque / (p1.r_base * b)
+    rho1 = p1.r_base * np.tan(model.pair.alpha_w)
+    rho2 = p2.r_base * np.tan(model.pair.alpha_w)
+    R_nom = 1.0 / (1 / rho1 - 1 / rho2) if p2.internal else 1.0 / (1 / rho1 + 1 / rho2)
+    R_nom /= np.cos(p1.beta_b)
+    b_nom, _ = hertz_line(w_nom * np.cos(p1.beta_b), R_nom, case.young, case.poisson)
+    # gaps below the expected deflection (ISO c' ~ 14 N/(mm um)) with a margin can close under load
+    cap = 3.0 * w_nom / 14.0e3 + 0.01
+    _, teeth1, teeth2 = _teeth_in_mesh(model, rolls, cap)
+    say(f"teeth in mesh: pinion {list(teeth1)}, gear {list(teeth2)}; modelled with one neighbour each side")
+    timings = {"tca": time.perf_counter() - t0}
+
+    def spec(teeth, side, r_range, r_bore):
+        return ComplianceSpec(teeth=tuple(range(min(teeth) - 1, max(teeth) + 2)), loaded=teeth, side=side,
+                              r_range=r_range, grid=fid.grid, face_width=b, r_bore=r_bore, h_flank=fid.h_flank,
+                              h_body=fid.h_body, depth=fid.depth, young=case.young, poisson=case.poisson)
+    body1 = body_compliance(p1, spec(teeth1, +1, model.pinion_range(), model.r_bore1), cache_dir, say)
+    body2 = body_compliance(p2, spec(teeth2, model.gear_side, model.gear_range(), model.r_bore2), cache_dir, say)
+    for name in ("mesh", "assembly", "factorisation", "setup", "solves"):
+        timings[name] = body1.timings.get(name, 0) + body2.timings.get(name, 0)
+    return LoadedModel(model, fid, teeth1, teeth2, body1, body2, b_nom, R_nom, timings)
+
+
+@dataclass(frozen=True)
+class PositionResult:
+    """Loaded contact at one mesh position (forces N, lengths mm, pressure MPa, angles rad)."""
+    roll: float
+    theta: float              # loaded pinion rotation beyond the kinematic position, rad
+    theta0: float             # unloaded (rigid) part, rad
+    tooth: np.ndarray         # (n,) pinion tooth of each cell
+    s: np.ndarray             # (n,) arc length on the pinion flank
+    z: np.ndarray             # (n,) axial position
+    area: np.ndarray          # (n,) mm^2
+    force: np.ndarray         # (n,) N
+    pressure: np.ndarray      # (n,) MPa
+    gap0: np.ndarray          # (n,) unloaded gap, mm
+    pair_load: dict           # pinion tooth -> normal force, N
+    root1: dict               # pinion tooth -> max principal fillet stress, MPa
+    root2: dict               # gear tooth -> max principal fillet stress, MPa
+    torque_residual: float    # |sum F h1 - T| / T
+    torque_ratio: float       # gear torque / pinion torque
+    iterations: int
+    residual: float
+    active: np.ndarray
+
+    @property
+    def max_pressure(self) -> float:
+        return float(self.pressure.max()) if self.pressure.size else 0.0
+
+
+def _principal_max(sig: np.ndarray) -> np.ndarray:
+    """Largest principal stress of Voigt stresses (..., 6) ordered xx, yy, zz, yz, xz, xy."""
+    T = np.stack([np.stack([sig[..., 0], sig[..., 5], sig[..., 4]], -1),
+                  np.stack([sig[..., 5], sig[..., 1], sig[..., 3]], -1),
+                  np.stack([sig[..., 4], sig[..., 3], sig[..., 2]], -1)], -2)
+    return np.linalg.eigvalsh(T)[..., -1]
+
+
+def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict):
+    """Contact strips of all teeth at a position: unloaded gaps and geometry of every cell."""
+    model, fid = lm.model, lm.fid
+    rb = model.pinion.r_base
+    s_lo, s_hi = (arc_length(r, rb) for r in model.pinion_range())
+    b = model.face_width
+    dz = b / fid.slices
+    zc = -0.5 * b + dz * (np.arange(fid.slices) + 0.5)
+    s_scan = np.linspace(s_lo, s_hi, 200)
+    S, Z = np.meshgrid(s_scan, zc, indexing="ij")
+    ds = lm.b_nom / fid.cells_per_b
+    out = []
+    for k in lm.teeth1:
+        fg = flank_gaps(model, phi1, k, S, Z)
+        g = np.where(np.isfinite(fg.gap) & (fg.lever1 > 0), fg.gap - fg.lever1 * theta_guess, np.inf)
+        if not np.isfinite(g).any() or g.min() > 0.02 + 0.5 * abs(theta_guess) * rb:
+            continue
+        for j in range(fid.slices):
+            col = g[:, j]
+            if not np.isfinite(col).any():
+                continue
+            sc = s_scan[np.argmin(col)]
+            w = fid.window * lm.b_nom * widen.get((k, j), 1.0)
+            a0, a1 = max(s_lo, sc - w), min(s_hi, sc + w)
+            n = max(1, int(round((a1 - a0) / ds)))
+            edges = np.linspace(a0, a1, n + 1)
+            out.append((k, j, 0.5 * (edges[1:] + edges[:-1]), np.diff(edges), a0 > s_lo, a1 < s_hi))
+    return out, zc, dz
+
+
+def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionResult | None = None,
+                   max_widen: int = 3) -> PositionResult:
+    """Loaded contact at pinion roll angle ``roll`` (rad from the pitch point) under ``torque`` (N mm)."""
+    model, fid = lm.model, lm.fid
+    case = model.case
+    E, nu = case.young, case.poisson
+    phi1 = model.phi_pitch - roll
+    p1, p2 = model.pinion, model.gear
+    theta_guess = warm.theta if warm is not None else torque / (p1.r_base ** 2 * 14.0e3 * model.face_width)
+    widen: dict = {}
+    for attempt in range(max_widen + 1):
+        strips, zc, dz = _cells(lm, phi1, theta_guess, widen)
+        if not strips:
+            raise ConvergenceError("contact search", float("inf"), 0,
+                                   "no tooth pair comes near contact: check the centre distance and the positions")
+        tooth = np.concatenate([np.full(len(s), k) for k, _, s, _, _, _ in strips])
+        sl = np.concatenate([np.full(len(s), j) for _, j, s, _, _, _ in strips])
+        s = np.concatenate([x for _, _, x, _, _, _ in strips])
+        dsv = np.concatenate([x for _, _, _, x, _, _ in strips])
+        z = zc[sl]
+        fg = np.empty(0)
+        gaps = []
+        for k in np.unique(tooth):
+            m = tooth == k
+            gaps.append((m, flank_gaps(model, phi1, int(k), s[m], z[m])))
+        n = len(s)
+        g0, h1, h2 = np.empty(n), np.empty(n), np.empty(n)
+        gt, gs, gz = np.empty(n, int), np.empty(n), np.empty(n)
+        P = np.empty((n, 3))
+        for m, fgk in gaps:
+            g0[m], h1[m], h2[m] = fgk.gap, fgk.lever1, fgk.lever2
+            gt[m], gs[m], gz[m] = fgk.gear_tooth, fgk.gear_s, fgk.gear_z
+            P[m] = fgk.points
+        # cell geometry: tangent along the profile, area, local coordinates per tooth block
+        eps = 1e-4
+        r_a = np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s + eps))
+        r_b_ = np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s - eps))
+        Pa, _ = flank_point_normal(p1, +1, r_a, z, tooth=0)
+        Pb, _ = flank_point_normal(p1, +1, r_b_, z, tooth=0)
+        Pz1, _ = flank_point_normal(p1, +1, r_a, z + eps, tooth=0)
+        Ps = (Pa - Pb) / (2 * eps)
+        Pz = (Pz1 - Pa) / eps
+        area = np.linalg.norm(np.cross(Ps, Pz), axis=1) * dsv * dz
+        a_half = 0.5 * np.linalg.norm(Ps, axis=1) * dsv
+        b_half = area / (4 * a_half)
+        ok = np.isfinite(g0) & (h1 > 0)
+        # compliance: FE far field of both bodies + half-space near field
+        W1 = lm.body1.weights(tooth, s, z)
+        W2 = lm.body2.weights(gt, gs, gz)
+        C = W1 @ (W1 @ lm.body1.C).T
+        C += W2 @ (W2 @ lm.body2.C).T
+        C = np.asarray(C)
+        d1 = np.interp(s, lm.body1.s_grid, lm.body1.depth)
+        d2 = np.interp(gs, lm.body2.s_grid, lm.body2.depth)
+        if fid.near_field:
+            for k in np.unique(tooth):
+                m = np.flatnonzero(tooth == k)
+                c = m[len(m) // 2]
+                e1 = Ps[c] / np.linalg.norm(Ps[c])
+                _, Nc = flank_point_normal(p1, +1, np.array([r_a[c]]), np.array([z[c]]), tooth=int(k))
+                e2 = np.cross(Nc[0], e1)
+                X = np.stack([(P[m] - P[c]) @ e1, (P[m] - P[c]) @ e2], 1)
+                half = np.stack([a_half[m], b_half[m]], 1)
+                C[np.ix_(m, m)] += near_field_correction(X, X, half, d1[m], E, nu)
+                C[np.ix_(m, m)] += near_field_correction(X, X, half, d2[m], E, nu)
+        else:
+            C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
+        C = 0.5 * (C + C.T)
+        g_use = np.where(ok, g0, np.inf)
+        active0 = ok & (g0 - h1 * theta_guess < 0)
+        try:
+            sol = solve_contact(C, g_use, np.where(ok, h1, 1.0), torque, active0=active0 if active0.any() else None)
+        except ContactNotConverged as exc:
+            raise ConvergenceError(f"contact at roll {np.degrees(roll):.3f} deg", exc.residual, exc.iterations,
+                                   exc.advice) from None
+        F = sol.force
+        # strips whose loaded border cell carries force are too narrow: widen and solve again
+        more = False
+        i0 = 0
+        for k, j, sv, _, open_lo, open_hi in strips:
+            f = F[i0:i0 + len(sv)]
+            if (open_lo and f[0] > 1e-9 * torque / p1.r_base) or (open_hi and f[-1] > 1e-9 * torque / p1.r_base):
+                widen[(k, j)] = widen.get((k, j), 1.0) * 1.7
+                more = True
+            i0 += len(sv)
+        theta_guess = sol.approach
+        if not more:
+            break
+    pressure = F / area
+    pair_load = {int(k): float(F[tooth == k].sum()) for k in lm.teeth1}
+    f1 = W1.T @ F
+    f2 = W2.T @ F
+    root1 = _root(lm.body1, f1)
+    root2 = _root(lm.body2, f2)
+    T1 = float(F @ h1)
+    T2 = float(F @ h2)
+    theta0 = float(np.min(np.where(ok, g0 / np.where(ok, h1, 1.0), np.inf)))
+    return PositionResult(float(roll), float(sol.approach), theta0, tooth, s, z, area, F, pressure, g0, pair_load,
+                          root1, root2, abs(T1 - torque) / torque, T2 / T1 if T1 else np.nan, sol.iterations,
+                          sol.residual, sol.active)
+
+
+def _root(body: BodyCompliance, f: np.ndarray) -> dict:
+    if body.root_stress.shape[0] == 0:
+        return {}
+    sig = np.einsum("mkn,n->mk", body.root_stress, f)
+    smax = _principal_max(sig)
+    return {int(k): float(smax[body.root_tooth == k].max()) for k in np.unique(body.root_tooth)}
+
+
+def te_arcsec(lm: LoadedModel, theta: np.ndarray) -> np.ndarray:
+    """Pinion rotation (rad) -> transmission error of the gear (arcsec, positive = lag)."""
+    return np.asarray(theta) / lm.model.pair.ratio * ARCSEC

@@ -1,0 +1,148 @@
+"""From a validated case to the geometric model of the pair: profiles, assembly, modifications.
+
+This is the geometry stage of the chain: it generates both transverse tooth profiles by the cutter
+(rack for external teeth, pinion-type shaper for internal teeth), places them at the centre distance
+with the misalignments and turns the case's micro-geometry into flank modifications.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from geometry.cylindrical import flank_point_normal
+import geometry.involute as involute_mod
+from geometry.involute import GearBlank, RackCutter, ShaperCutter, ToothProfile, generate_by_rack, involute, inverse_involute
+from geometry.modification import FlankModification
+from geometry.pair import CylindricalPair
+
+from .case import CylindricalCase, Member
+from .errors import CaseError
+
+__all__ = ["PairModel", "build_model", "working_centre_distance"]
+
+
+@dataclass(frozen=True)
+class PairModel:
+    """Everything geometric about a case (mm, rad)."""
+    case: CylindricalCase
+    pinion: ToothProfile
+    gear: ToothProfile
+    pair: CylindricalPair
+    mod1: FlankModification
+    mod2: FlankModification
+    face_width: float
+    r_bore1: float
+    r_bore2: float
+    gear_side: int          # which side label of the gear outline carries the load
+    phi_pitch: float        # pinion rotation where tooth 0 touches at the pitch point (rad)
+
+    @property
+    def pitch_angle(self) -> float:
+        """Angular pitch of the pinion, rad."""
+        return 2 * np.pi / self.pinion.z
+
+    def pinion_range(self) -> tuple[float, float]:
+        """Radii of the pinion's loaded flank from the form circle to the tip, mm."""
+        return self.pinion.r_form_right, self.pinion.r_tip
+
+    def gear_range(self) -> tuple[float, float]:
+        """Radii of the gear's loaded flank (form circle .. tip, ordered low to high), mm."""
+        rf = self.gear.r_form_right if self.gear_side > 0 else self.gear.r_form_left
+        return (min(rf, self.gear.r_tip), max(rf, self.gear.r_tip))
+
+
+def working_centre_distance(case: CylindricalCase) -> float:
+    """Centre distance for zero backlash from the profile shifts (ISO 21771 eq. for inv alpha_wt)."""
+    z1, z2 = case.pinion.teeth, case.gear.teeth
+    at = np.arctan(np.tan(case.pressure_angle) / np.cos(case.helix_angle))
+    mt = case.module / np.cos(case.helix_angle)
+    if case.gear.internal:
+        inv_w = involute(at) + 2 * np.tan(case.pressure_angle) * (case.gear.profile_shift - case.pinion.profile_shift) / (z2 - z1)
+        aw = inverse_involute(inv_w)
+        return 0.5 * mt * (z2 - z1) * np.cos(at) / np.cos(aw)
+    inv_w = involute(at) + 2 * np.tan(case.pressure_angle) * (case.pinion.profile_shift + case.gear.profile_shift) / (z1 + z2)
+    aw = inverse_involute(inv_w)
+    return 0.5 * mt * (z1 + z2) * np.cos(at) / np.cos(aw)
+
+
+def _modification(m, r_tip: float, name: str) -> FlankModification:
+    start = None
+    if m.tip_relief_start_diameter is not None:
+        start = 0.5 * m.tip_relief_start_diameter
+        if start >= r_tip:
+            raise CaseError(f"{name}.modifications.tip_relief_start_diameter_mm", m.tip_relief_start_diameter,
+                            f"smaller than the tip diameter {2 * r_tip:.3f} mm")
+    return FlankModification(m.tip_relief, start, m.tip_relief_exponent, m.profile_crowning, m.lead_crowning,
+                             m.lead_slope, m.pitch_errors)
+
+
+def _profile(case: CylindricalCase, member: Member, beta: float, name: str) -> ToothProfile:
+    try:
+        blank = GearBlank(z=member.teeth, m_n=case.module, alpha_n=case.pressure_angle, beta=beta,
+                          x=member.profile_shift, d_tip=member.tip_diameter, internal=member.internal)
+        if member.internal:
+            cutter = ShaperCutter(z0=case.shaper_teeth, x0=case.shaper_profile_shift, ha0=case.rack_addendum,
+                                  rho0=case.rack_tip_radius)
+            return involute_mod.generate_by_shaper(blank, cutter)
+        rack = RackCutter(alpha_n=case.pressure_angle, ha=case.rack_addendum, hf=case.rack_dedendum,
+                          rho=case.rack_tip_radius)
+        return generate_by_rack(blank, rack)
+    except ValueError as exc:
+        raise CaseError(name, f"z={member.teeth}, x={member.profile_shift}, d_tip={member.tip_diameter}",
+                        f"a tooth that can be generated: {exc}") from None
+
+
+def build_model(case: CylindricalCase) -> PairModel:
+    """Generate both profiles, assemble the pair, check it and find the pitch-point position."""
+    p1 = _profile(case, case.pinion, case.helix_angle, "pinion")
+    p2 = _profile(case, case.gear, case.helix_angle if case.gear.internal else -case.helix_angle, "gear")
+    a = case.centre_distance or working_centre_distance(case)
+    b = min(case.pinion.face_width, case.gear.face_width)
+    if case.gear.internal:
+        if a <= 0 or p2.r_tip <= p1.r_tip + 1e-6 or a > p2.r_tip - p1.r_root:
+            raise CaseError("assembly.centre_distance_mm", a, "an internal pair whose pinion fits inside the ring "
+                            f"(0 < a <= {p2.r_tip - p1.r_root:.3f} mm)")
+        if p2.r_base - p1.r_base >= a:
+            raise CaseError("assembly.centre_distance_mm", a, f"more than r_b2 - r_b1 = {p2.r_base - p1.r_base:.3f} mm")
+    else:
+        if a < p1.r_base + p2.r_base:
+            raise CaseError("assembly.centre_distance_mm", a, f"at least r_b1 + r_b2 = {p1.r_base + p2.r_base:.3f} mm")
+        if a < p1.r_tip + p2.r_root or a < p2.r_tip + p1.r_root:
+            raise CaseError("assembly.centre_distance_mm", a, "large enough that each tip clears the other's root "
+                            f"(>= {max(p1.r_tip + p2.r_root, p2.r_tip + p1.r_root):.3f} mm)")
+    pair = CylindricalPair(p1, p2, a, b, case.lead_misalignment, case.lead_deviation)
+    # interference check of the internal pair: the ring's tip must stay outside the pinion's base circle path
+    if case.gear.internal:
+        L1 = np.sqrt(p1.r_tip ** 2 - p1.r_base ** 2)
+        L2 = np.sqrt(p2.r_tip ** 2 - p2.r_base ** 2)
+        T1T2 = np.sqrt(a ** 2 - (p2.r_base - p1.r_base) ** 2)
+        if L2 < T1T2:
+            raise CaseError("gear.tip_diameter_mm", 2 * p2.r_tip, "a ring tip outside the interference point "
+                            f"(tip diameter > {2 * np.hypot(p2.r_base, T1T2):.3f} mm): the ring tip cuts the pinion "
+                            "below its base circle")
+        del L1
+    r_b = (0.5 * case.pinion.bore_diameter) if case.pinion.bore_diameter else max(p1.r_root - 4 * case.module,
+                                                                                   0.35 * p1.r_root)
+    if r_b >= p1.r_root - 0.5 * case.module:
+        raise CaseError("pinion.bore_diameter_mm", 2 * r_b, f"below the root diameter minus one module "
+                        f"({2 * (p1.r_root - 0.5 * case.module):.3f} mm)")
+    if case.gear.internal:
+        r_b2 = (0.5 * case.gear.bore_diameter) if case.gear.bore_diameter else p2.r_root + 4 * case.module
+        if r_b2 <= p2.r_root + 0.5 * case.module:
+            raise CaseError("gear.bore_diameter_mm", 2 * r_b2, "for a ring gear: its outer rim diameter, larger than "
+                            f"the root diameter plus one module ({2 * (p2.r_root + 0.5 * case.module):.3f} mm)")
+    else:
+        r_b2 = (0.5 * case.gear.bore_diameter) if case.gear.bore_diameter else max(p2.r_root - 4 * case.module,
+                                                                                    0.35 * p2.r_root)
+        if r_b2 >= p2.r_root - 0.5 * case.module:
+            raise CaseError("gear.bore_diameter_mm", 2 * r_b2, f"below the root diameter minus one module "
+                            f"({2 * (p2.r_root - 0.5 * case.module):.3f} mm)")
+    # which gear flank carries the load, and where the pitch point is
+    P, N = flank_point_normal(p1, +1, np.array([pair.r_w1]), np.zeros(1), 0)
+    s = pair.separation(0.0, P, N)
+    x, y = P[0, 0], P[0, 1]
+    phi_pitch = float(np.arctan2(x, y))
+    return PairModel(case, p1, p2, pair, _modification(case.pinion.modifications, p1.r_tip, "pinion"),
+                     _modification(case.gear.modifications, p2.r_tip, "gear"), b, r_b, r_b2,
+                     int(s.gear_side[0]) or 1, phi_pitch)
