@@ -105,8 +105,8 @@ def _check_inputs(C, g0, h, load, active0, tol, max_iter):
     if int(max_iter) != max_iter or max_iter < 1:
         raise ValueError(f"max_iter = {max_iter!r}: must be an integer >= 1")
     idx = np.flatnonzero(fin)
-    Cf = C[np.ix_(idx, idx)]
-    if not np.isfinite(Cf).all():
+    Cf = C if idx.size == n else C[np.ix_(idx, idx)]          # no copy in the common case
+    if not np.isfinite(Cf.sum()) and not np.isfinite(Cf).all():  # one cheap pass first
         raise ValueError("C contains non-finite values on cells with finite g0")
     mask0 = None
     if active0 is not None:

@@ -15,14 +15,16 @@ the inscribed polyhedron). Surface loads, in contrast, integrate over the quadra
 The element stiffness is integrated in closed form. With barycentric coordinates L_a and
 the P2 basis ``N_a = L_a (2 L_a - 1)``, ``N_ab = 4 L_a L_b``, every gradient is
 ``grad N_i = sum_cd T[i,c,d] L_d grad L_c`` (linear in L), so with the exact moments
-``int L_d L_f dV = V (1 + delta_df) / 20`` (Zienkiewicz & Taylor, *The Finite Element
-Method* vol. 1, eq. for integrals of area/volume coordinates)::
+``int L_d L_f dV = V (1 + delta_df) / 20`` (from ``int L1^a L2^b L3^c L4^d dV =
+6 V a! b! c! d! / (a + b + c + d + 3)!``, Zienkiewicz, Taylor & Zhu, *The Finite Element
+Method: Its Basis and Fundamentals*, 6th ed., sec. 6.3)::
 
     K_e[ik, jl] = V sum_ce Q[i,c,j,e] H[c,k,e,l],
     H[c,k,e,l]  = lam g_ck g_el + mu (g_cl g_ek + delta_kl g_c . g_e),  g_c = grad L_c,
 
-with the element-independent tensor ``Q = T T M``. All elements are done in one BLAS
-product of (100, 16) by (16, M*9).
+with the element-independent tensor ``Q = T T M``: per chunk of elements, nine BLAS
+products (100, 16) x (16, m), summed into 3x3 node-pair blocks by ``bincount`` on a
+node-level sparsity pattern (9x fewer keys to sort than a dof-level COO -> CSR).
 """
 from __future__ import annotations
 

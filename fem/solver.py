@@ -96,13 +96,12 @@ class Factorization:
             block = max(1, int(5e7 // max(self.free.size, 1)))
         if block < 1:
             raise ValueError(f"block = {block}: must be >= 1")
-        Ff = F[self.free]
         obs_free = None if observe is None else sp.csr_matrix(observe)[:, self.free]
         rows = self.n if observe is None else observe.shape[0]
         out = np.zeros((rows, k))
         for s in range(0, k, block):
-            b = Ff[:, s:s + block]
-            b = b.toarray() if sp.issparse(b) else np.asfortranarray(b)
+            b = F[:, s:s + block][self.free]
+            b = b.toarray(order="F") if sp.issparse(b) else np.asfortranarray(b)
             x = self._solve_free(b).reshape(b.shape)
             if obs_free is None:
                 out[self.free, s:s + block] = x

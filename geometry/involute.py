@@ -328,8 +328,9 @@ def _assemble(right, kinds, blank, **radii) -> ToothProfile:
                         alpha_t=alpha_t, beta_b=beta_b, **radii)
 
 
-def _arc(r, cw0, cw1, kind_h=_H_MAX_ARC):
-    n = max(int(np.ceil(abs(cw1 - cw0) * r / min(kind_h, np.sqrt(8 * _CHORD_TOL * r)))) + 1, 2)
+def _arc(r, cw0, cw1, h_max=_H_MAX_ARC):
+    """Arc (m, 2) at radius r from cw angle cw0 to cw1, chord error < _CHORD_TOL, spacing <= h_max."""
+    n = max(int(np.ceil(abs(cw1 - cw0) * r / min(h_max, np.sqrt(8 * _CHORD_TOL * r)))) + 1, 2)
     return _pol(r, np.linspace(cw0, cw1, n))
 
 
@@ -571,7 +572,7 @@ def generate_by_shaper(blank: GearBlank, shaper: ShaperCutter) -> ToothProfile:
                          f"{r_form:.4f} mm)")
     fil_b = rounding(_resample(rounding, 0.0, 1.0))             # space boundary, root -> form
     inv_b = shaper_inv(_resample(shaper_inv, u_c, u_tip))       # space boundary, form -> tip
-    if np.any(np.diff(np.hypot(*fil_b.T)) < -1e-12):
+    if np.any(np.diff(np.hypot(*fil_b.T)) > 1e-12):           # radius must fall from root to form
         raise ValueError(f"ShaperCutter.rho0 = {rho0!r} mm: the generated fillet folds back (unsupported)")
 
     def to_tooth(pts):      # space boundary (cw b from the space centre) -> right flank of the tooth

@@ -21,9 +21,9 @@ DEG = math.pi / 180.0
 #: Fidelity presets: flank element size (x module), body element size (x module), compliance grid
 #: (profile x face per flank), contact cells across the Hertz width, face slices, near-field on/off.
 FIDELITIES: dict[str, dict[str, Any]] = {
-    "coarse": dict(h_flank=0.45, h_body=1.6, grid=(7, 6), cells_per_b=4, slices=10, near_field=True),
-    "default": dict(h_flank=0.25, h_body=1.2, grid=(9, 8), cells_per_b=7, slices=16, near_field=True),
-    "fine": dict(h_flank=0.15, h_body=0.9, grid=(12, 10), cells_per_b=10, slices=24, near_field=True),
+    "coarse": dict(h_flank=0.45, h_body=1.6, grid=(7, 6), cells_per_b=3, slices=8, near_field=True, window=1.8),
+    "default": dict(h_flank=0.3, h_body=1.3, grid=(9, 8), cells_per_b=5, slices=14, near_field=True, window=2.0),
+    "fine": dict(h_flank=0.2, h_body=1.0, grid=(12, 10), cells_per_b=8, slices=20, near_field=True, window=2.5),
 }
 
 

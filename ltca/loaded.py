@@ -15,14 +15,14 @@ import numpy as np
 
 from fem.compliance import BodyCompliance, ComplianceSpec, arc_length, body_compliance
 from fem.contact import ContactNotConverged, solve_contact
-from fem.halfspace import near_field_correction
 from geometry.cylindrical import flank_point_normal
 
 from .errors import ConvergenceError
 from .model import PairModel
-from .tca import ARCSEC, flank_gaps, unloaded_tca
+from .tca import ARCSEC, first_contact, flank_gaps, unloaded_tca
 
-__all__ = ["Fidelity", "LoadedModel", "PositionResult", "prepare", "solve_position", "hertz_line"]
+__all__ = ["Fidelity", "LoadedModel", "PositionResult", "prepare", "solve_position", "hertz_line", "weights_of",
+           "te_arcsec"]
 
 
 @dataclass(frozen=True)
@@ -41,10 +41,10 @@ class Fidelity:
     def from_preset(params: dict, module: float, **override) -> "Fidelity":
         p = dict(params)
         p.update({k: v for k, v in override.items() if v is not None})
-        h = p["h_flank"] * module if p["h_flank"] < 1.0 and "abs" not in p else p["h_flank"]
+        h = p["h_flank"] * module
         return Fidelity(h_flank=h, h_body=p["h_body"] * module, grid=tuple(p["grid"]),
                         cells_per_b=p["cells_per_b"], slices=p["slices"], near_field=p["near_field"],
-                        depth=p.get("depth", 1.5 * h) if p["near_field"] else 0.0)
+                        depth=p.get("depth", 1.5 * h) if p["near_field"] else 0.0, window=p.get("window", 2.0))
 
 
 def hertz_line(w: float, R: float, E: float, nu: float) -> tuple[float, float]:
@@ -123,12 +123,17 @@ class PositionResult:
     theta: float              # loaded pinion rotation beyond the kinematic position, rad
     theta0: float             # unloaded (rigid) part, rad
     tooth: np.ndarray         # (n,) pinion tooth of each cell
+    lattice: np.ndarray       # (n,) profile lattice index of each cell (arc length step from the form circle)
+    slice: np.ndarray         # (n,) face slice of each cell
     s: np.ndarray             # (n,) arc length on the pinion flank
     z: np.ndarray             # (n,) axial position
     area: np.ndarray          # (n,) mm^2
     force: np.ndarray         # (n,) N
     pressure: np.ndarray      # (n,) MPa
     gap0: np.ndarray          # (n,) unloaded gap, mm
+    gear_tooth: np.ndarray    # (n,) gear tooth touched by each cell
+    gear_s: np.ndarray        # (n,) arc length on the gear flank, mm
+    gear_z: np.ndarray        # (n,) axial position on the gear, mm
     pair_load: dict           # pinion tooth -> normal force, N
     root1: dict               # pinion tooth -> max principal fillet stress, MPa
     root2: dict               # gear tooth -> max principal fillet stress, MPa
@@ -152,7 +157,10 @@ def _principal_max(sig: np.ndarray) -> np.ndarray:
 
 
 def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict):
-    """Contact strips of all teeth at a position: unloaded gaps and geometry of every cell."""
+    """Contact strips of all teeth at a position, on a lattice of the pinion flank.
+
+    Cells sit on one lattice per flank (arc length step ``ds`` from the form circle, one slice per face
+    step), so that the near-field term only depends on integer offsets and is tabulated."""
     model, fid = lm.model, lm.fid
     rb = model.pinion.r_base
     s_lo, s_hi = (arc_length(r, rb) for r in model.pinion_range())
@@ -162,6 +170,7 @@ def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict):
     s_scan = np.linspace(s_lo, s_hi, 200)
     S, Z = np.meshgrid(s_scan, zc, indexing="ij")
     ds = lm.b_nom / fid.cells_per_b
+    n_lat = max(1, int(np.floor((s_hi - s_lo) / ds)))
     out = []
     for k in lm.teeth1:
         fg = flank_gaps(model, phi1, k, S, Z)
@@ -172,13 +181,44 @@ def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict):
             col = g[:, j]
             if not np.isfinite(col).any():
                 continue
-            sc = s_scan[np.argmin(col)]
-            w = fid.window * lm.b_nom * widen.get((k, j), 1.0)
-            a0, a1 = max(s_lo, sc - w), min(s_hi, sc + w)
-            n = max(1, int(round((a1 - a0) / ds)))
-            edges = np.linspace(a0, a1, n + 1)
-            out.append((k, j, 0.5 * (edges[1:] + edges[:-1]), np.diff(edges), a0 > s_lo, a1 < s_hi))
-    return out, zc, dz
+            ic = int(round((s_scan[np.argmin(col)] - s_lo) / ds))
+            nw = int(np.ceil(fid.window * fid.cells_per_b * widen.get((k, j), 1.0)))
+            i0, i1 = max(0, ic - nw), min(n_lat, ic + nw + 1)
+            if i1 <= i0:
+                continue
+            idx = np.arange(i0, i1)
+            out.append((k, j, idx, s_lo + (idx + 0.5) * ds, i0 > 0, i1 < n_lat))
+    return out, zc, dz, ds
+
+
+def _near_field_block(I, J, d1, d2, Vs, Vz, E, nu, quantum=0.01):
+    """Half-space near-field term of both bodies for one tooth's cells on the lattice, (n, n).
+
+    Cells (I, J) are lattice indices; one lattice step is the 3D vector Vs (profile) or Vz (face);
+    d1, d2 are the matching depths of the two bodies at the target cells (quantised to ``quantum`` mm
+    so that the term is tabulated over integer offsets)."""
+    from fem.halfspace import subsurface_influence, surface_influence
+    e1 = Vs / np.linalg.norm(Vs)
+    nrm = np.cross(Vs, Vz)
+    area = np.linalg.norm(nrm)
+    e2 = np.cross(nrm / area, e1)
+    a = 0.5 * np.linalg.norm(Vs)
+    bh = area / (4 * a)
+    di = np.arange(I.min() - I.max(), I.max() - I.min() + 1)
+    dj = np.arange(J.min() - J.max(), J.max() - J.min() + 1)
+    DI, DJ = np.meshgrid(di, dj, indexing="ij")
+    X = DI * (Vs @ e1) + DJ * (Vz @ e1)
+    Y = DI * (Vs @ e2) + DJ * (Vz @ e2)
+    surf = surface_influence(X, Y, a, bh, E, nu)
+    oi, oj = I[:, None] - I[None, :] - di[0], J[:, None] - J[None, :] - dj[0]
+    out = np.zeros((len(I), len(I)))
+    for d in (d1, d2):
+        q = np.round(d / quantum).astype(int)
+        for qv in np.unique(q):
+            table = surf - subsurface_influence(X, Y, qv * quantum, a, bh, E, nu)
+            rows = np.flatnonzero(q == qv)
+            out[rows] += table[oi[rows], oj[rows]]
+    return out
 
 
 def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionResult | None = None,
@@ -192,16 +232,16 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
     theta_guess = warm.theta if warm is not None else torque / (p1.r_base ** 2 * 14.0e3 * model.face_width)
     widen: dict = {}
     for attempt in range(max_widen + 1):
-        strips, zc, dz = _cells(lm, phi1, theta_guess, widen)
+        strips, zc, dz, ds = _cells(lm, phi1, theta_guess, widen)
         if not strips:
             raise ConvergenceError("contact search", float("inf"), 0,
                                    "no tooth pair comes near contact: check the centre distance and the positions")
-        tooth = np.concatenate([np.full(len(s), k) for k, _, s, _, _, _ in strips])
-        sl = np.concatenate([np.full(len(s), j) for _, j, s, _, _, _ in strips])
-        s = np.concatenate([x for _, _, x, _, _, _ in strips])
-        dsv = np.concatenate([x for _, _, _, x, _, _ in strips])
+        tooth = np.concatenate([np.full(len(x), k) for k, _, x, _, _, _ in strips])
+        sl = np.concatenate([np.full(len(x), j) for _, j, x, _, _, _ in strips])
+        lat = np.concatenate([x for _, _, x, _, _, _ in strips])
+        s = np.concatenate([x for _, _, _, x, _, _ in strips])
+        dsv = np.full(len(s), ds)
         z = zc[sl]
-        fg = np.empty(0)
         gaps = []
         for k in np.unique(tooth):
             m = tooth == k
@@ -224,8 +264,6 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         Ps = (Pa - Pb) / (2 * eps)
         Pz = (Pz1 - Pa) / eps
         area = np.linalg.norm(np.cross(Ps, Pz), axis=1) * dsv * dz
-        a_half = 0.5 * np.linalg.norm(Ps, axis=1) * dsv
-        b_half = area / (4 * a_half)
         ok = np.isfinite(g0) & (h1 > 0)
         # compliance: FE far field of both bodies + half-space near field
         W1 = lm.body1.weights(tooth, s, z)
@@ -239,13 +277,7 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
             for k in np.unique(tooth):
                 m = np.flatnonzero(tooth == k)
                 c = m[len(m) // 2]
-                e1 = Ps[c] / np.linalg.norm(Ps[c])
-                _, Nc = flank_point_normal(p1, +1, np.array([r_a[c]]), np.array([z[c]]), tooth=int(k))
-                e2 = np.cross(Nc[0], e1)
-                X = np.stack([(P[m] - P[c]) @ e1, (P[m] - P[c]) @ e2], 1)
-                half = np.stack([a_half[m], b_half[m]], 1)
-                C[np.ix_(m, m)] += near_field_correction(X, X, half, d1[m], E, nu)
-                C[np.ix_(m, m)] += near_field_correction(X, X, half, d2[m], E, nu)
+                C[np.ix_(m, m)] += _near_field_block(lat[m], sl[m], d1[m], d2[m], Ps[c] * ds, Pz[c] * dz, E, nu)
         else:
             C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
         C = 0.5 * (C + C.T)
@@ -260,7 +292,7 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         # strips whose loaded border cell carries force are too narrow: widen and solve again
         more = False
         i0 = 0
-        for k, j, sv, _, open_lo, open_hi in strips:
+        for k, j, _, sv, open_lo, open_hi in strips:
             f = F[i0:i0 + len(sv)]
             if (open_lo and f[0] > 1e-9 * torque / p1.r_base) or (open_hi and f[-1] > 1e-9 * torque / p1.r_base):
                 widen[(k, j)] = widen.get((k, j), 1.0) * 1.7
@@ -277,8 +309,8 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
     root2 = _root(lm.body2, f2)
     T1 = float(F @ h1)
     T2 = float(F @ h2)
-    theta0 = float(np.min(np.where(ok, g0 / np.where(ok, h1, 1.0), np.inf)))
-    return PositionResult(float(roll), float(sol.approach), theta0, tooth, s, z, area, F, pressure, g0, pair_load,
+    theta0 = float(first_contact(model, phi1, lm.teeth1))
+    return PositionResult(float(roll), float(sol.approach), theta0, tooth, lat, sl, s, z, area, F, pressure, g0, gt, gs, gz, pair_load,
                           root1, root2, abs(T1 - torque) / torque, T2 / T1 if T1 else np.nan, sol.iterations,
                           sol.residual, sol.active)
 
@@ -289,6 +321,11 @@ def _root(body: BodyCompliance, f: np.ndarray) -> dict:
     sig = np.einsum("mkn,n->mk", body.root_stress, f)
     smax = _principal_max(sig)
     return {int(k): float(smax[body.root_tooth == k].max()) for k in np.unique(body.root_tooth)}
+
+
+def weights_of(lm: LoadedModel, res: PositionResult):
+    """Interpolation weights of a position's cells on the pinion and gear compliance grids."""
+    return lm.body1.weights(res.tooth, res.s, res.z), lm.body2.weights(res.gear_tooth, res.gear_s, res.gear_z)
 
 
 def te_arcsec(lm: LoadedModel, theta: np.ndarray) -> np.ndarray:

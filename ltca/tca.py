@@ -17,7 +17,7 @@ from geometry.modification import modification_depth
 
 from .model import PairModel
 
-__all__ = ["FlankGaps", "flank_gaps", "TCAResult", "unloaded_tca", "contact_ratio", "ARCSEC"]
+__all__ = ["FlankGaps", "flank_gaps", "TCAResult", "unloaded_tca", "first_contact", "contact_ratio", "ARCSEC"]
 
 ARCSEC = 180 * 3600 / np.pi   # arcsec per rad
 
@@ -104,28 +104,61 @@ def scan_grid(model: PairModel, ns: int = 240, nz: int = 9) -> tuple[np.ndarray,
     return s, np.linspace(-0.5 * b, 0.5 * b, nz)
 
 
+def first_contact(model: PairModel, phi1: float, teeth, ns: int = 240, nz: int = 9, detail: bool = False):
+    """Smallest pinion rotation (rad, driving direction) that closes a gap at pinion angle ``phi1``.
+
+    The separation field is scanned on an (ns, nz) flank grid per tooth, then the minimum of g/h is
+    refined along the profile by two rounds of parabolic interpolation through three points, which
+    is exact for the locally quadratic gap of smooth flanks. With ``detail`` also returns the tooth,
+    radius and axial position of the contact and the per-tooth minima."""
+    s, z = scan_grid(model, ns, nz)
+    S, Z = np.meshgrid(s, z, indexing="ij")
+    best, where, per_tooth = np.inf, (0, 0.0, 0.0), []
+    for k in teeth:
+        fg = flank_gaps(model, phi1, int(k), S, Z)
+        ok = np.isfinite(fg.gap) & (fg.lever1 > 0)
+        if not ok.any():
+            per_tooth.append(np.inf)
+            continue
+        q = np.where(ok, fg.gap / np.where(ok, fg.lever1, 1.0), np.inf)
+        i, j = np.unravel_index(np.argmin(q), q.shape)
+        qk, sk = q[i, j], s[i]
+        h = s[1] - s[0]
+        for _ in range(2):
+            trial = np.array([sk - h, sk, sk + h])
+            trial = np.clip(trial, s[0], s[-1])
+            if trial[0] == trial[1] or trial[1] == trial[2]:
+                break
+            f = flank_gaps(model, phi1, int(k), trial, np.full(3, z[j]))
+            qq = f.gap / f.lever1
+            den = qq[0] - 2 * qq[1] + qq[2]
+            if not np.all(np.isfinite(qq)) or den <= 0:
+                break
+            sv = np.clip(sk + 0.5 * h * (qq[0] - qq[2]) / den, s[0], s[-1])
+            fv = flank_gaps(model, phi1, int(k), np.array([sv]), np.array([z[j]]))
+            qv = fv.gap[0] / fv.lever1[0]
+            if np.isfinite(qv) and qv < qk:
+                qk, sk = qv, sv
+            h *= 0.25
+        per_tooth.append(qk)
+        if qk < best:
+            best, where = qk, (int(k), float(np.sqrt(model.pinion.r_base ** 2 + 2 * model.pinion.r_base * sk)),
+                               float(z[j]))
+    if detail:
+        return best, where, np.array(per_tooth)
+    return best
+
+
 def unloaded_tca(model: PairModel, roll: np.ndarray, teeth=range(-3, 4), ns: int = 240, nz: int = 9) -> TCAResult:
     """Separation-field TCA at pinion roll angles ``roll`` (rad) for the pinion ``teeth``."""
     roll = np.atleast_1d(np.asarray(roll, float))
     teeth = np.asarray(list(teeth))
-    s, z = scan_grid(model, ns, nz)
-    S, Z = np.meshgrid(s, z, indexing="ij")
-    n, nt = len(roll), len(teeth)
-    theta0 = np.full(n, np.inf)
+    n = len(roll)
+    theta0 = np.empty(n)
     ct, cr, cz = np.zeros(n, int), np.zeros(n), np.zeros(n)
-    ratio = np.full((n, nt), np.inf)
+    ratio = np.empty((n, len(teeth)))
     for i, ps in enumerate(roll):
-        phi1 = model.phi_pitch - ps
-        for j, k in enumerate(teeth):
-            fg = flank_gaps(model, phi1, int(k), S, Z)
-            ok = np.isfinite(fg.gap) & (fg.lever1 > 0)
-            if not ok.any():
-                continue
-            q = np.where(ok, fg.gap / np.where(ok, fg.lever1, 1.0), np.inf)
-            m = np.unravel_index(np.argmin(q), q.shape)
-            ratio[i, j] = q[m]
-            if q[m] < theta0[i]:
-                theta0[i], ct[i], cr[i], cz[i] = q[m], k, fg.r[m], fg.z[m]
+        theta0[i], (ct[i], cr[i], cz[i]), ratio[i] = first_contact(model, model.phi_pitch - ps, teeth, ns, nz, True)
     min_gap = (ratio - theta0[:, None]) * model.pinion.r_base
     te = theta0 / model.pair.ratio * ARCSEC
     ea, eb = contact_ratio(model)

@@ -55,24 +55,27 @@ def test_meshing_residual_normals_and_speed(flanks):
 
 
 def test_normals_orthogonal_to_surface_tangents(blank, gear_cut, flanks):
-    """Tangents from re-solved neighbouring points (central differences, h = 1e-3 mm in Z and rho)."""
-    fl = flanks["gear"]["convex"]
-    fc = gear_cut.convex
-    X = fl.meta["params"].reshape(-1, 3)
-    Z, rho = fl.meta["Z"].ravel(), fl.meta["rho"].ravel()
-    n = fl.normals.reshape(-1, 3)
-    h = 1e-3
-    worst = 0.0
-    for dZ, dR in ((h, 0.0), (0.0, h)):
-        pts = []
-        for s in (1, -1):
-            x, ok = solve_axial_points(fc, Z + s * dZ, rho + s * dR, X)
-            assert ok.all()
-            pts.append(surface_state(fc, x[:, 0], x[:, 1], x[:, 2]).r_w)
-        t = (pts[0] - pts[1]) / np.linalg.norm(pts[0] - pts[1], axis=-1, keepdims=True)
-        worst = max(worst, np.max(np.abs(np.einsum("ni,ni->n", t, n))))
-    print(worst)
-    assert worst < 1e-8
+    """Tangents from re-solved neighbouring points (central differences, h = 1e-4 mm in Z and rho).
+
+    Truncation error is O(h^2) on the straight-blade part (< 1e-9 measured 2e-10); the edge-radius
+    fillet (radius 1.2 mm, curvature jump at its tangency point) gets a looser bound."""
+    for fl, fc in ((flanks["gear"]["convex"], gear_cut.convex), (flanks["gear"]["concave"], gear_cut.concave)):
+        X = fl.meta["params"].reshape(-1, 3)
+        Z, rho = fl.meta["Z"].ravel(), fl.meta["rho"].ravel()
+        n = fl.normals.reshape(-1, 3)
+        straight = X[:, 0] > 0.05
+        h = 1e-4
+        for dZ, dR in ((h, 0.0), (0.0, h)):
+            pts = []
+            for s in (1, -1):
+                x, ok = solve_axial_points(fc, Z + s * dZ, rho + s * dR, X)
+                assert ok.all()
+                pts.append(surface_state(fc, x[:, 0], x[:, 1], x[:, 2]).r_w)
+            t = (pts[0] - pts[1]) / np.linalg.norm(pts[0] - pts[1], axis=-1, keepdims=True)
+            dot = np.abs(np.einsum("ni,ni->n", t, n))
+            assert dot[straight].max() < 1e-9
+            assert dot.max() < 1e-7
+        assert straight.sum() > 0.8 * len(X)
 
 
 def test_points_match_transform_chain(gear_cut):

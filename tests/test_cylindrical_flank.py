@@ -93,3 +93,21 @@ def test_helical_flank_defaults_and_bad_input():
         helical_flank(p, 1, 14.0, 5, 3, r_range=(p.r_base - 1, p.r_tip))
     with pytest.raises(ValueError, match="r ="):
         flank_point_normal(p, 1, p.r_base - 1.0, 0.0)
+
+
+def test_internal_flank_is_concave():
+    from geometry.involute import ShaperCutter, generate_by_shaper
+    m = 3.0
+    for beta in (0.0, 20 * DEG):
+        p = generate_by_shaper(GearBlank(60, m, A20, beta=beta, d_tip=2 * 88.0 / np.cos(beta) if beta else 175.0,
+                                         internal=True), ShaperCutter(20, 0.0, 1.25 * m, 0.3 * m))
+        for side in (1, -1):
+            f = helical_flank(p, side, 20.0, 81, 21)
+            assert f.u[0] > f.u[-1]              # u from root (outer) to tip (inner)
+            assert np.all(f.curvatures[..., 1] < 0) and np.all(f.curvatures[..., 0] == 0)
+            k_fd, _ = surface_curvatures(f.points, f.normals, f.u, f.v)
+            sl = (slice(2, -2), slice(2, -2))
+            rel = np.abs(k_fd[sl][..., 1] - f.curvatures[sl][..., 1]) / np.abs(f.curvatures[sl][..., 1])
+            assert rel.max() < 0.01
+            # normal out of the internal tooth points towards the space (right flank: +x)
+            assert np.all(np.sign(f.normals[..., 0]) == side)

@@ -281,3 +281,13 @@ def test_lame_cylinder_converges_at_second_order_or_better():
     print("Lame: observed orders", order)
     assert err[-1] < 1e-3
     assert order[-1] > 1.8
+
+
+@pytest.mark.slow
+def test_lame_cylinder_fine_ladder():
+    sizes = np.array([2.0, 1.0, 0.5])
+    t0 = time.perf_counter()
+    err = np.array([_lame_error(h)[0] for h in sizes])
+    order = np.log(err[:-1] / err[1:]) / np.log(sizes[:-1] / sizes[1:])
+    print(f"Lame fine ladder: errors {err}, orders {order}, {time.perf_counter() - t0:.1f} s")
+    assert order[-1] > 1.8

@@ -212,3 +212,51 @@ def test_bad_generation():
         generate_by_rack(GearBlank(20, m, 25 * DEG), iso_rack(m))
     with pytest.raises(ValueError, match="internal"):
         generate_by_rack(GearBlank(60, m, A20, internal=True), iso_rack(m))
+
+
+# ------------------------------------------------------------------------------- internal (shaper)
+@pytest.mark.parametrize("x, x0, d_tip", [(0.0, 0.0, 175.0), (0.3, 0.1, 173.0), (-0.2, 0.0, 175.5)])
+def test_internal_by_shaper_matches_analytic_involute(x, x0, d_tip):
+    m, z = 3.0, 60
+    t0 = time.perf_counter()
+    p = generate_by_shaper(GearBlank(z, m, A20, x=x, d_tip=d_tip, internal=True),
+                           ShaperCutter(20, x0, 1.25 * m, 0.3 * m))
+    assert time.perf_counter() - t0 < 0.05
+    assert p.internal and p.r_tip < p.r_form_right < p.r_root
+    r, rb = z * m / 2, z * m / 2 * np.cos(A20)
+    # space width on the reference circle (x > 0 thickens the internal tooth): e = pi m/2 - 2 x m tan a
+    e = np.pi * m / 2 - 2 * x * m * np.tan(A20)
+    # analytic internal involute: the space is shaped like an external tooth on the same base circle,
+    # half space angle e/(2r) + inv(a) - inv(a_R) about the space centre at -pi/z (right of the tooth)
+    for side in (-1, 1):
+        sel = (p.kind == 2) & (p.side == side)
+        R = np.hypot(*p.xy[sel].T)
+        aR = np.arccos(rb / R)
+        half_space = e / (2 * r) + involute(A20) - involute(aR)
+        ang = -side * (np.pi / z - half_space)            # ccw polar angle of the tooth flank
+        exact = np.stack([-R * np.sin(ang), R * np.cos(ang)], axis=-1)
+        assert np.max(np.linalg.norm(exact - p.xy[sel], axis=1)) < 1e-6
+        assert R.min() < r < R.max()
+    assert abs(np.pi * m - p.s_ref - e) < 1e-12
+    # root radius: shaper tip reaches a_w + r_a0; for x = x0 = 0 that is r + ha0 = r + 1.25 m
+    if x == 0 and x0 == 0:
+        assert abs(np.hypot(*p.xy.T).max() - (r + 1.25 * m)) < 1e-9
+    ang = np.arctan2(-p.xy[:, 0], p.xy[:, 1])
+    assert abs(ang[0] - np.pi / z) < 1e-12 and abs(ang[-1] + np.pi / z) < 1e-12
+
+
+def test_internal_bad_input():
+    m = 3.0
+    sh = ShaperCutter(20, 0.0, 1.25 * m, 0.3 * m)
+    with pytest.raises(ValueError, match="d_tip"):       # standard tip: involute interference with z0 = 20
+        generate_by_shaper(GearBlank(60, m, A20, internal=True), sh)
+    with pytest.raises(ValueError, match="d_tip"):       # tip circle below the base circle
+        generate_by_shaper(GearBlank(60, m, A20, d_tip=160.0, internal=True), sh)
+    with pytest.raises(ValueError, match="z0"):
+        generate_by_shaper(GearBlank(22, m, A20, internal=True), sh)
+    with pytest.raises(ValueError, match="internal"):
+        generate_by_shaper(GearBlank(60, m, A20), sh)
+    with pytest.raises(ValueError, match="z0"):
+        ShaperCutter(3, 0.0, 3.0, 0.5)
+    with pytest.raises(ValueError, match="rho0"):
+        ShaperCutter(20, 0.0, 3.0, 3.5)

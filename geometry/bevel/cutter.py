@@ -1,7 +1,7 @@
 """Head cutter of face milling: straight-profile blades with a circular edge radius.
 
 Cutter frame S_c: z along the cutter axis, origin at the cutter centre in the **tip plane** (the plane of
-the blade tips, z = 0).  The blades stick out of the head towards z < 0 ... 0: a blade point at depth
+the blade tips, z = 0); the blades occupy z <= 0 (head body further down).  A blade point at depth
 ``s`` from the tip along the straight profile lies at
 
     rho(s) = R_p + sigma s sin(alpha),   z(s) = -s cos(alpha),

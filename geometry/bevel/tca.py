@@ -25,10 +25,14 @@ from .blank import BevelBlank
 from .generation import _guess, solve_axial_points, surface_state
 from .machine import FlankCut, MemberCut
 
-__all__ = ["Assembly", "BevelPair", "TCAResult", "mesh_frames", "to_pitch_coords", "curvature_tensor",
+__all__ = ["ContactError", "Assembly", "BevelPair", "TCAResult", "mesh_frames", "to_pitch_coords", "curvature_tensor",
            "tca", "ARCSEC"]
 
 ARCSEC = np.pi / (180.0 * 3600.0)
+
+
+class ContactError(RuntimeError):
+    """The continuous-tangency TCA found no interior contact point (edge contact or no contact)."""
 
 
 @dataclass(frozen=True)
@@ -255,8 +259,10 @@ def tca(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = Assembly(
     X0[6] = a1 - np.arctan2(s2.r_w[1], s2.r_w[0])
     X, ok = newton(X0, 0.0)
     if not ok:
-        raise RuntimeError("TCA: no contact found near the mean point at phi1 = 0; the flanks do not touch "
-                           "there (check settings and assembly errors)")
+        raise ContactError(f"TCA ({pinion_side} pinion flank): no interior point of tangency near the mean "
+                           f"point at phi1 = 0 (residual {np.max(np.abs(residual(X, 0.0))):.2e}); contact is "
+                           f"at an edge or absent: use the separation-field analysis, or check the settings "
+                           f"and the assembly errors {asm}")
     cycle = 2 * np.pi / bl.pinion.z
     dphi = cycle / steps_per_cycle
     nmax = int(np.ceil(max_cycles * steps_per_cycle))
