@@ -142,6 +142,8 @@ def assemble_stiffness(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float)
     N = len(nodes)
     eye = np.eye(3)
     # node-level pattern: one 3x3 block per coupled node pair; entries in layout [i, j, m]
+    # elements sorted by lowest node: each chunk then scatters into a narrow band of blocks
+    tets = tets[np.argsort(tets[:, :4].min(axis=1), kind="stable")]
     t64 = tets.astype(np.int64)
     chunks = range(0, len(tets), _CHUNK)
     keys = np.concatenate([(t64[s:s + _CHUNK].T[:, None, :] * N + t64[s:s + _CHUNK].T[None, :, :]).ravel()
@@ -161,9 +163,11 @@ def assemble_stiffness(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float)
         H = H.reshape(16, 9, len(t))
         w = where[pos:pos + 100 * len(t)]
         pos += 100 * len(t)
+        lo, hi = int(w.min()), int(w.max()) + 1
+        w = w - lo
         for kl in range(9):  # (100, m) contiguous, entries [i, j, m]
             data = _Q @ H[:, kl, :]
-            blocks[:, kl] += np.bincount(w, weights=data.ravel(), minlength=len(pattern))
+            blocks[lo:hi, kl] += np.bincount(w, weights=data.ravel(), minlength=hi - lo)
         del H, data
     rows, cols = np.divmod(pattern, N)
     indptr = np.searchsorted(rows, np.arange(N + 1)).astype(np.int64)

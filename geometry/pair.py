@@ -154,7 +154,8 @@ class CylindricalPair:
         nrm = np.where(at_end[:, None], nrm + n2, nrm)
         sgn = np.sign(np.einsum("ij,ij->i", q - foot, nrm))
         sgn[sgn == 0] = 1.0
-        return best * sgn, foot, segi
+        nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
+        return best * sgn, foot, segi, nrm
 
     def separation(self, phi1: float, points: np.ndarray, normals: np.ndarray) -> Separation:
         """Separation of pinion flank points (pinion frame, (..., 3)) at pinion rotation ``phi1``."""
@@ -174,16 +175,19 @@ class CylindricalPair:
         k = np.round(np.arctan2(x, y) / pitch).astype(int)
         c, s = np.cos(k * pitch), np.sin(k * pitch)
         q = np.stack([c * x - s * y, s * x + c * y], 1)
-        dist, foot, segi = self._signed_distance(q)
+        dist, foot, segi, nrm2 = self._signed_distance(q)
         gap = dist * self.cos_bb
         face = np.abs(Q[:, 2]) <= 0.5 * self.gear_face_width + 1e-9
         gap = np.where(face, gap, np.inf)
         # driving rotation is clockwise: velocity -ez x P per rad
         v = -np.cross([0.0, 0.0, 1.0], P)
         lever1 = np.einsum("ij,ij->i", v, N)
-        lever2 = np.cross(P - Tg[:3, 3], N)[:, 2]
         side = np.asarray(self.gear.side)[np.clip(segi, 0, len(self._xy) - 1)]
         kind = np.asarray(self.gear.kind)[np.clip(segi, 0, len(self._xy) - 1)]
+        # the gear's lever arm from its own normal at the foot point: exactly r_b2 cos(beta_b) on the
+        # involute (the normal is tangent to the base circle), the outline normal elsewhere (edges)
+        lever2 = np.abs(foot[:, 0] * nrm2[:, 1] - foot[:, 1] * nrm2[:, 0]) * self.cos_bb
+        lever2 = np.where(kind == 2, self.gear.r_base * self.cos_bb, lever2)
         r2 = np.linalg.norm(foot, axis=1)
         rs = lambda a: a.reshape(shape)
         return Separation(rs(gap), rs(lever1), rs(np.abs(lever2)), rs(k), rs(r2), rs(Q[:, 2]), rs(side),

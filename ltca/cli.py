@@ -1,4 +1,4 @@
-"""The ``ltca`` command: run, tca, convergence, validate, budget, chain.
+"""The ``ltca`` command: run, tca, convergence, validate, bench, budget, chain.
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
@@ -36,6 +36,12 @@ def _cmd_convergence(a: argparse.Namespace) -> int:
 def _cmd_validate(a: argparse.Namespace) -> int:
     from .validate import run_validate
     return run_validate(out=a.out, reference=a.reference, progress=not a.quiet)
+
+
+def _cmd_bench(a: argparse.Namespace) -> int:
+    from .bench import run_bench
+    run_bench(a.case, repeat=a.repeat, positions=a.positions, fidelity=a.fidelity)
+    return 0
 
 
 def _cmd_budget(a: argparse.Namespace) -> int:
@@ -99,6 +105,15 @@ def build_parser() -> argparse.ArgumentParser:
                    help="analytic references and tables (default) or the CalculiX cross-check")
     v.add_argument("--quiet", action="store_true")
     v.set_defaults(func=_cmd_validate)
+
+    be = sub.add_parser("bench", help="cold wall time of an analysis (median of runs) beside its Hertz error",
+                        description="Runs the case cold several times and prints the median time per stage and "
+                                    "the pitch-point error against Hertz.")
+    be.add_argument("case")
+    be.add_argument("--repeat", type=_positive_int, default=3)
+    be.add_argument("--positions", type=_positive_int)
+    be.add_argument("--fidelity", choices=["coarse", "default", "fine"])
+    be.set_defaults(func=_cmd_bench)
 
     b = sub.add_parser("budget", help="drive-train stiffness and backlash budget (seed 003)",
                        description="Torsional deflection of a drive train of members in series, per torque.")

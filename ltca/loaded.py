@@ -66,9 +66,14 @@ class LoadedModel:
     teeth2: tuple[int, ...]
     body1: BodyCompliance
     body2: BodyCompliance
-    b_nom: float
+    b_nom: float              # Hertz half-width of the nominal line load at torque_nom, mm
     R_nom: float
+    torque_nom: float         # N mm
     timings: dict = field(default_factory=dict)
+
+    def half_width(self, torque: float) -> float:
+        """Nominal Hertz half-width at another torque: b grows as sqrt(load) (Johnson 4.2)."""
+        return self.b_nom * np.sqrt(torque / self.torque_nom)
 
 
 def _teeth_in_mesh(model: PairModel, rolls: np.ndarray, cap: float):
@@ -113,7 +118,7 @@ def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, c
     body2 = body_compliance(p2, spec(teeth2, model.gear_side, model.gear_range(), model.r_bore2), cache_dir, say)
     for name in ("mesh", "assembly", "factorisation", "setup", "solves"):
         timings[name] = body1.timings.get(name, 0) + body2.timings.get(name, 0)
-    return LoadedModel(model, fid, teeth1, teeth2, body1, body2, b_nom, R_nom, timings)
+    return LoadedModel(model, fid, teeth1, teeth2, body1, body2, b_nom, R_nom, torque, timings)
 
 
 @dataclass(frozen=True)
@@ -142,6 +147,7 @@ class PositionResult:
     iterations: int
     residual: float
     active: np.ndarray
+    ds: float                 # profile size of the contact cells (lattice step), mm
 
     @property
     def max_pressure(self) -> float:
@@ -156,7 +162,7 @@ def _principal_max(sig: np.ndarray) -> np.ndarray:
     return np.linalg.eigvalsh(T)[..., -1]
 
 
-def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict):
+def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict, torque: float):
     """Contact strips of all teeth at a position, on a lattice of the pinion flank.
 
     Cells sit on one lattice per flank (arc length step ``ds`` from the form circle, one slice per face
@@ -169,7 +175,7 @@ def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict):
     zc = -0.5 * b + dz * (np.arange(fid.slices) + 0.5)
     s_scan = np.linspace(s_lo, s_hi, 200)
     S, Z = np.meshgrid(s_scan, zc, indexing="ij")
-    ds = lm.b_nom / fid.cells_per_b
+    ds = lm.half_width(torque) / fid.cells_per_b
     n_lat = max(1, int(np.floor((s_hi - s_lo) / ds)))
     out = []
     for k in lm.teeth1:
@@ -232,7 +238,7 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
     theta_guess = warm.theta if warm is not None else torque / (p1.r_base ** 2 * 14.0e3 * model.face_width)
     widen: dict = {}
     for attempt in range(max_widen + 1):
-        strips, zc, dz, ds = _cells(lm, phi1, theta_guess, widen)
+        strips, zc, dz, ds = _cells(lm, phi1, theta_guess, widen, torque)
         if not strips:
             raise ConvergenceError("contact search", float("inf"), 0,
                                    "no tooth pair comes near contact: check the centre distance and the positions")
@@ -312,7 +318,7 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
     theta0 = float(first_contact(model, phi1, lm.teeth1))
     return PositionResult(float(roll), float(sol.approach), theta0, tooth, lat, sl, s, z, area, F, pressure, g0, gt, gs, gz, pair_load,
                           root1, root2, abs(T1 - torque) / torque, T2 / T1 if T1 else np.nan, sol.iterations,
-                          sol.residual, sol.active)
+                          sol.residual, sol.active, ds)
 
 
 def _root(body: BodyCompliance, f: np.ndarray) -> dict:

@@ -24,7 +24,7 @@ def pressure_on_lattice(lm: LoadedModel, res: PositionResult) -> tuple[np.ndarra
     model, fid = lm.model, lm.fid
     rb = model.pinion.r_base
     s_lo, s_hi = (arc_length(r, rb) for r in model.pinion_range())
-    ds = lm.b_nom / fid.cells_per_b
+    ds = res.ds
     n_lat = max(1, int(np.floor((s_hi - s_lo) / ds)))
     field = np.zeros((len(lm.teeth1), n_lat, fid.slices))
     t_idx = np.searchsorted(np.asarray(lm.teeth1), res.tooth)

@@ -1,0 +1,42 @@
+"""Shared fixtures: the FZG C14 compliance is computed once per test session and reused by every
+test that changes only gaps (micro-geometry, errors, misalignment, load), as the design intends."""
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+CASES = ROOT / "cases"
+REFERENCE = ROOT.parent / "shared" / "reference"
+
+
+@pytest.fixture(scope="session")
+def fzg_case():
+    from ltca.case import load_case
+    return load_case(CASES / "fzg_c14.toml")
+
+
+@pytest.fixture(scope="session")
+def fzg_model(fzg_case):
+    from ltca.model import build_model
+    return build_model(fzg_case)
+
+
+@pytest.fixture(scope="session")
+def fzg_lm(fzg_case, fzg_model, tmp_path_factory):
+    """FZG C14 at the default fidelity (flank elements 0.3 m = 1.35 mm), both bodies' compliance."""
+    from ltca.case import FIDELITIES
+    from ltca.loaded import Fidelity, prepare
+    from ltca.run import cycle_rolls
+    fid = Fidelity.from_preset(FIDELITIES["default"], fzg_case.module)
+    return prepare(fzg_model, fid, cycle_rolls(30, 16), fzg_case.torques[0],
+                   cache_dir=tmp_path_factory.mktemp("mesh"))
+
+
+def with_case(lm, **changes):
+    """The same bodies (compliance) with another case: new gaps, same FE."""
+    from ltca.model import build_model
+    case = dataclasses.replace(lm.model.case, **changes)
+    return dataclasses.replace(lm, model=build_model(case))
