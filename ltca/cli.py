@@ -22,6 +22,16 @@ def _cmd_run(a: argparse.Namespace) -> int:
 
 
 def _cmd_tca(a: argparse.Namespace) -> int:
+    import tomllib
+    from pathlib import Path
+    try:
+        bevel = "bevel" in tomllib.loads(Path(a.case).read_text())
+    except (OSError, tomllib.TOMLDecodeError):
+        bevel = False          # load_case reports the problem with the file
+    if bevel:
+        from .bevel import run_bevel_tca
+        run_bevel_tca(a.case, out=a.out)
+        return 0
     from .run import run_tca
     run_tca(a.case, out=a.out, positions=a.positions)
     return 0
@@ -82,7 +92,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.set_defaults(func=_cmd_run)
 
     t = sub.add_parser("tca", help="unloaded tooth contact analysis (separation, path, TE, contact ratio)",
-                       description="Unloaded TCA: separation field, contact path, unloaded TE, contact ratio.")
+                       description="Unloaded TCA: separation field, contact path, unloaded TE, contact ratio. "
+                                   "A case with a [bevel] table: spiral bevel pinion synthesis from eta2 and m21 "
+                                   "and the TCA of both flanks, with a Gleason-style settings summary.")
     t.add_argument("case")
     t.add_argument("--out", default=None, help="output directory for summary.json and plots")
     t.add_argument("--positions", type=_positive_int, help="mesh positions per cycle (override)")

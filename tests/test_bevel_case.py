@@ -1,0 +1,50 @@
+"""Spiral bevel case file: run_bevel_tca writes summary.json per issue 3; case mistakes raise CaseError."""
+import json
+from pathlib import Path
+
+import pytest
+
+from ltca.bevel import run_bevel_tca
+from ltca.errors import CaseError
+
+CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.toml"
+
+
+@pytest.fixture(scope="module")
+def summary(tmp_path_factory):
+    out = tmp_path_factory.mktemp("bevel")
+    s = run_bevel_tca(str(CASE), str(out))
+    return s, json.loads((out / "summary.json").read_text())
+
+
+def test_summary_meets_seed_targets(summary):
+    s, disk = summary
+    assert disk == json.loads(json.dumps(s))
+    for label, (eta, te) in {"working": (22.0, 8.25), "coast": (-14.0, 11.25)}.items():
+        f = disk["flanks"][label]
+        for key in ("path_angle_deg", "te_amplitude_arcsec", "contact_ratio", "path_straightness_mm"):
+            assert key in f
+        assert abs(f["path_angle_deg"] - eta) < 1.0                    # seed 000 sec. 4 targets
+        assert f["te_amplitude_arcsec"] == pytest.approx(te, rel=0.05)
+        assert f["te_r2"] > 0.99 and f["contact_ratio"] > 1.0
+    for member in ("gear", "pinion"):
+        for side in ("concave", "convex"):
+            assert "radial_setting_mm" in disk["machine_settings"][member][side]
+    assert disk["machine_settings"]["pinion"]["concave"]["blank_offset_mm"] == 0.0   # redesigned Em1
+    assert abs(disk["design"]["coast"]["blank_offset_mm"]) > 1.0                       # first design had one
+
+
+@pytest.mark.parametrize("old,new,field", [("pinion_teeth = 12", "pinion_teeth = 12.5", "bevel.pinion_teeth"),
+                                           ('gear_hand = "right"', 'gear_hand = "up"', "bevel.gear_hand"),
+                                           ("te_magnitude_arcsec = 8.25", "te_magnitude_arcsec = -1",
+                                            "bevel.working.te_magnitude_arcsec"),
+                                           ("path_angle_deg = 22.0", "path_angel_deg = 22.0",
+                                            "bevel.working.path_angel_deg")])
+def test_case_mistakes_raise_case_error(tmp_path, old, new, field):
+    text = CASE.read_text()
+    assert old in text
+    p = tmp_path / "bad.toml"
+    p.write_text(text.replace(old, new, 1))
+    with pytest.raises(CaseError) as exc:
+        run_bevel_tca(str(p), None)
+    assert exc.value.field == field
