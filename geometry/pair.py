@@ -157,8 +157,11 @@ class CylindricalPair:
         nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
         return best * sgn, foot, segi, nrm
 
-    def separation(self, phi1: float, points: np.ndarray, normals: np.ndarray) -> Separation:
-        """Separation of pinion flank points (pinion frame, (..., 3)) at pinion rotation ``phi1``."""
+    def separation(self, phi1: float, points: np.ndarray, normals: np.ndarray, side: int = 1) -> Separation:
+        """Separation of pinion flank points (pinion frame, (..., 3)) at pinion rotation ``phi1``.
+
+        ``side`` +1: the right (drive) flank, closed by a clockwise pinion rotation; -1: the left
+        (coast) flank, closed by a counter-clockwise one. ``lever1`` is per rad in that sense."""
         shape = points.shape[:-1]
         R1 = rotation_z(phi1)
         P = points.reshape(-1, 3) @ R1[:3, :3].T
@@ -179,8 +182,9 @@ class CylindricalPair:
         gap = dist * self.cos_bb
         face = np.abs(Q[:, 2]) <= 0.5 * self.gear_face_width + 1e-9
         gap = np.where(face, gap, np.inf)
-        # driving rotation is clockwise: velocity -ez x P per rad
-        v = -np.cross([0.0, 0.0, 1.0], P)
+        # the drive flank closes under a clockwise rotation (velocity -ez x P per rad), the coast flank
+        # under a counter-clockwise one
+        v = -side * np.cross([0.0, 0.0, 1.0], P)
         lever1 = np.einsum("ij,ij->i", v, N)
         side = np.asarray(self.gear.side)[np.clip(segi, 0, len(self._xy) - 1)]
         kind = np.asarray(self.gear.kind)[np.clip(segi, 0, len(self._xy) - 1)]

@@ -314,7 +314,7 @@ def load_budget_case(path: str) -> tuple[DriveTrain, np.ndarray]:
         except tomllib.TOMLDecodeError as exc:
             raise CaseError("<file>", str(exc), "valid TOML", file=path) from None
     try:
-        _known(doc, {"budget", "member"}, "case")
+        _known(doc, {"budget", "member", "backlash"}, "case")
         head = doc.get("budget")
         if not isinstance(head, dict):
             raise CaseError("budget", head, "a [budget] table")
@@ -364,13 +364,89 @@ def plot_budget(result: BudgetResult, path: str) -> None:
     plt.close(fig)
 
 
+def _backlash_table(path: str) -> dict | None:
+    """The optional ``[backlash]`` table: a cylindrical pair whose double-flank TE gives the backlash curve."""
+    with open(path, "rb") as fh:
+        tab = tomllib.load(fh).get("backlash")
+    if tab is None:
+        return None
+    try:
+        if not isinstance(tab, dict):
+            raise CaseError("backlash", tab, "a [backlash] table")
+        _known(tab, {"pair_case", "thickness_allowance_um", "positions_per_cycle", "cycles"}, "backlash")
+        pair = tab.get("pair_case")
+        if not isinstance(pair, str):
+            raise CaseError("backlash.pair_case", pair, "the path of a cylindrical gear case, relative to this file")
+        pair = os.path.join(os.path.dirname(os.path.abspath(path)), pair)
+        allow = tab.get("thickness_allowance_um", [0.0, 0.0])
+        if (not isinstance(allow, list) or len(allow) != 2
+                or any(isinstance(a, bool) or not isinstance(a, (int, float)) or not 0 <= a <= 2000 for a in allow)):
+            raise CaseError("backlash.thickness_allowance_um", allow, "[pinion, gear] tooth thinning in um, each "
+                            "in [0, 2000]")
+        n = tab.get("positions_per_cycle", 8)
+        cycles = tab.get("cycles", 0)
+        for key, v, lo in (("positions_per_cycle", n, 1), ("cycles", cycles, 0)):
+            if isinstance(v, bool) or not isinstance(v, int) or v < lo:
+                raise CaseError(f"backlash.{key}", v, f"an integer >= {lo} (cycles 0: one pinion revolution)")
+    except CaseError as exc:
+        raise CaseError(exc.field, exc.value, exc.allowed, file=path) from None
+    return {"pair_case": pair, "allowance": [a * 1e-3 for a in allow], "n": n, "cycles": cycles}
+
+
+def backlash_from_pair(spec: dict, result: BudgetResult) -> list:
+    """Seed 003 Eq. 20-21 on a cylindrical pair: unloaded double-flank TE by TCA, shifted by the budget.
+
+    The TE is that of the gear; the budget's deflections are taken as referred to the same shaft."""
+    import dataclasses
+
+    from .backlash import backlash_curves
+    from .case import load_case
+    from .model import build_model
+    from .run import cycle_rolls
+    from .tca import ARCSEC, double_flank_tca
+    case = load_case(spec["pair_case"])
+    case = dataclasses.replace(
+        case, pinion=dataclasses.replace(case.pinion, thickness_allowance=spec["allowance"][0]),
+        gear=dataclasses.replace(case.gear, thickness_allowance=spec["allowance"][1]))
+    model = build_model(case)
+    cycles = spec["cycles"] or case.pinion.teeth
+    roll = cycle_rolls(spec["n"], case.pinion.teeth, cycles)
+    drive, coast = double_flank_tca(model, roll)
+    return [backlash_curves(roll, drive / ARCSEC, coast / ARCSEC, float(d)) for d in result.total]
+
+
 def run_budget(case_path: str, out_dir: str | None) -> BudgetResult:
-    """CLI entry ``ltca budget CASE [--out DIR]``: print the table; write CSV and PNG into out_dir."""
+    """CLI entry ``ltca budget CASE [--out DIR]``: print the table; write CSV and PNG into out_dir.
+
+    With a ``[backlash]`` table, also the backlash curve of the named gear pair from its unloaded
+    drive- and coast-side TE and the loaded curves shifted by each torque's total deflection."""
     train, torques = load_budget_case(case_path)
     result = compute_budget(train, torques)
     print(result.table())
+    spec = _backlash_table(case_path)
+    curves = backlash_from_pair(spec, result) if spec else []
+    for T, c in zip(torques, curves):
+        arcsec = np.pi / 180 / 3600
+        print(f"backlash at {T:g} N m: unloaded {c.backlash.min() / arcsec:.2f} .. {c.backlash.max() / arcsec:.2f} "
+              f"arcsec, loaded separation {c.loaded_hysteresis.min() / arcsec:.2f} .. "
+              f"{c.loaded_hysteresis.max() / arcsec:.2f} arcsec")
     if out_dir:
         os.makedirs(out_dir, exist_ok=True)
         write_budget_csv(result, os.path.join(out_dir, "budget.csv"))
         plot_budget(result, os.path.join(out_dir, "budget.png"))
+        if curves:
+            from .backlash import plot_backlash
+            plot_backlash(curves[-1], os.path.join(out_dir, "backlash.png"),
+                          f"{result.title}: backlash, loaded at {torques[-1]:g} N m")
+            with open(os.path.join(out_dir, "backlash.csv"), "w") as fh:
+                fh.write("roll_deg,te_drive_arcsec,te_coast_arcsec,backlash_arcsec,"
+                         + ",".join(f"loaded_drive_{T:g}Nm,loaded_coast_{T:g}Nm" for T in torques) + "\n")
+                arc = np.pi / 180 / 3600
+                c0 = curves[0]
+                for i in range(len(c0.roll_angle)):
+                    row = [np.degrees(c0.roll_angle[i]), c0.te_drive[i] / arc, c0.te_coast[i] / arc,
+                           c0.backlash[i] / arc]
+                    for c in curves:
+                        row += [c.loaded_drive[i] / arc, c.loaded_coast[i] / arc]
+                    fh.write(",".join(f"{v:.6g}" for v in row) + "\n")
     return result

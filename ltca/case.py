@@ -36,7 +36,9 @@ class Modifications:
     profile_crowning: float = 0.0      # C_alpha, mm, parabola over the active profile
     lead_crowning: float = 0.0         # C_beta, mm, parabola over the face width
     lead_slope: float = 0.0            # f_Hbeta, mm, linear over the face (+ at z = +b/2)
-    pitch_errors: tuple[tuple[int, float], ...] = ()  # (tooth, f_p in mm): flank moved back by f_p
+    pitch_errors: tuple[tuple[int, float], ...] = ()  # (tooth, position error in mm): + drive flank moved back
+    profile_slope: float = 0.0         # f_Halpha, mm (+ = tip relieved)
+    roll_ratio_error: float = 0.0      # generating-chain ratio error e (-), turned into a profile slope
 
 
 @dataclass(frozen=True)
@@ -49,6 +51,7 @@ class Member:
     bore_diameter: float | None
     internal: bool
     modifications: Modifications
+    thickness_allowance: float = 0.0   # mm, normal, total tooth thinning (backlash)
 
 
 @dataclass(frozen=True)
@@ -72,6 +75,7 @@ class CylindricalCase:
     poisson: float
     torques: tuple[float, ...]  # N mm on the pinion (driver)
     positions: int
+    cycles: int
     fidelity: str
     fidelity_params: dict = field(default_factory=dict)
     source: str | None = None
@@ -102,6 +106,7 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "tip_diameter_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
         "bore_diameter_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
         "internal": (bool, False, False, None, "true or false"),
+        "thickness_allowance_um": (float, False, 0.0, lambda v: 0 <= v <= 2000, "a number in [0, 2000] um"),
     },
     "modifications": {
         "tip_relief_um": (float, False, 0.0, lambda v: 0 <= v <= 500, "a number in [0, 500] um"),
@@ -111,6 +116,8 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "lead_crowning_um": (float, False, 0.0, lambda v: 0 <= v <= 200, "a number in [0, 200] um"),
         "lead_slope_um": (float, False, 0.0, lambda v: -200 <= v <= 200, "a number in [-200, 200] um"),
         "pitch_errors_um": (dict, False, {}, None, "a table {tooth index = error in um}"),
+        "profile_slope_um": (float, False, 0.0, lambda v: -200 <= v <= 200, "a number in [-200, 200] um"),
+        "roll_ratio_error": (float, False, 0.0, lambda v: -0.01 <= v <= 0.01, "a number in [-0.01, 0.01]"),
     },
     "assembly": {
         "centre_distance_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
@@ -127,7 +134,9 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "driver": (str, False, "pinion", lambda v: v == "pinion", "'pinion' (the pinion drives)"),
     },
     "analysis": {
-        "positions": (int, False, 30, lambda v: 1 <= v <= 2000, "an integer in [1, 2000]"),
+        "positions": (int, False, 30, lambda v: 1 <= v <= 2000, "an integer in [1, 2000] (per mesh cycle)"),
+        "cycles": (int, False, 1, lambda v: 1 <= v <= 1000, "an integer in [1, 1000] (mesh cycles analysed; the "
+                   "pinion teeth for a full pinion revolution)"),
         "fidelity": (str, False, "default", lambda v: v in FIDELITIES, f"one of {sorted(FIDELITIES)}"),
     },
 }
@@ -185,14 +194,15 @@ def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
         tip_relief=m["tip_relief_um"] * 1e-3, tip_relief_start_diameter=m["tip_relief_start_diameter_mm"],
         tip_relief_exponent=m["tip_relief_exponent"], profile_crowning=m["profile_crowning_um"] * 1e-3,
         lead_crowning=m["lead_crowning_um"] * 1e-3, lead_slope=m["lead_slope_um"] * 1e-3,
-        pitch_errors=tuple(sorted(errors)))
+        pitch_errors=tuple(sorted(errors)), profile_slope=m["profile_slope_um"] * 1e-3,
+        roll_ratio_error=m["roll_ratio_error"])
 
 
 def _member(data: dict, name: str, file: str | None) -> Member:
     m = _section(data, name, "member", file, required=True)
     mods = _modifications(data[name].get("modifications", {}), f"{name}.modifications", file)
     return Member(m["teeth"], m["profile_shift"], m["face_width_mm"], m["tip_diameter_mm"],
-                  m["bore_diameter_mm"], m["internal"], mods)
+                  m["bore_diameter_mm"], m["internal"], mods, m["thickness_allowance_um"] * 1e-3)
 
 
 def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
@@ -236,7 +246,8 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
         pinion=pinion, gear=gear, centre_distance=asm["centre_distance_mm"],
         lead_misalignment=asm["lead_misalignment_um"] * 1e-3, lead_deviation=asm["lead_deviation_um"] * 1e-3,
         young=mat["youngs_modulus_mpa"], poisson=mat["poisson_ratio"],
-        torques=tuple(float(t) * 1e3 for t in torques), positions=ana["positions"], fidelity=ana["fidelity"],
+        torques=tuple(float(t) * 1e3 for t in torques), positions=ana["positions"], cycles=ana["cycles"],
+        fidelity=ana["fidelity"],
         fidelity_params=dict(FIDELITIES[ana["fidelity"]]), source=c["source"] or None)
 
 

@@ -162,7 +162,7 @@ def _principal_max(sig: np.ndarray) -> np.ndarray:
     return np.linalg.eigvalsh(T)[..., -1]
 
 
-def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict, torque: float):
+def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict, torque: float, cycle: int = 0):
     """Contact strips of all teeth at a position, on a lattice of the pinion flank.
 
     Cells sit on one lattice per flank (arc length step ``ds`` from the form circle, one slice per face
@@ -179,7 +179,7 @@ def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict, torque
     n_lat = max(1, int(np.floor((s_hi - s_lo) / ds)))
     out = []
     for k in lm.teeth1:
-        fg = flank_gaps(model, phi1, k, S, Z)
+        fg = flank_gaps(model, phi1, k, S, Z, cycle=cycle)
         g = np.where(np.isfinite(fg.gap) & (fg.lever1 > 0), fg.gap - fg.lever1 * theta_guess, np.inf)
         if not np.isfinite(g).any() or g.min() > 0.02 + 0.5 * abs(theta_guess) * rb:
             continue
@@ -228,8 +228,11 @@ def _near_field_block(I, J, d1, d2, Vs, Vz, E, nu, quantum=0.01):
 
 
 def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionResult | None = None,
-                   max_widen: int = 3) -> PositionResult:
-    """Loaded contact at pinion roll angle ``roll`` (rad from the pitch point) under ``torque`` (N mm)."""
+                   max_widen: int = 3, cycle: int = 0) -> PositionResult:
+    """Loaded contact at pinion roll angle ``roll`` (rad from the pitch point) under ``torque`` (N mm).
+
+    ``roll`` lies within the mesh cycle around tooth 0; ``cycle`` (mesh cycles travelled) selects which
+    physical teeth the modelled ones stand for, so that tooth errors follow the revolution."""
     model, fid = lm.model, lm.fid
     case = model.case
     E, nu = case.young, case.poisson
@@ -238,7 +241,7 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
     theta_guess = warm.theta if warm is not None else torque / (p1.r_base ** 2 * 14.0e3 * model.face_width)
     widen: dict = {}
     for attempt in range(max_widen + 1):
-        strips, zc, dz, ds = _cells(lm, phi1, theta_guess, widen, torque)
+        strips, zc, dz, ds = _cells(lm, phi1, theta_guess, widen, torque, cycle)
         if not strips:
             raise ConvergenceError("contact search", float("inf"), 0,
                                    "no tooth pair comes near contact: check the centre distance and the positions")
@@ -251,7 +254,7 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         gaps = []
         for k in np.unique(tooth):
             m = tooth == k
-            gaps.append((m, flank_gaps(model, phi1, int(k), s[m], z[m])))
+            gaps.append((m, flank_gaps(model, phi1, int(k), s[m], z[m], cycle=cycle)))
         n = len(s)
         g0, h1, h2 = np.empty(n), np.empty(n), np.empty(n)
         gt, gs, gz = np.empty(n, int), np.empty(n), np.empty(n)
@@ -315,8 +318,8 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
     root2 = _root(lm.body2, f2)
     T1 = float(F @ h1)
     T2 = float(F @ h2)
-    theta0 = float(first_contact(model, phi1, lm.teeth1))
-    return PositionResult(float(roll), float(sol.approach), theta0, tooth, lat, sl, s, z, area, F, pressure, g0, gt, gs, gz, pair_load,
+    theta0 = float(first_contact(model, phi1, lm.teeth1, cycle=cycle))
+    return PositionResult(float(roll + cycle * model.pitch_angle), float(sol.approach), theta0, tooth, lat, sl, s, z, area, F, pressure, g0, gt, gs, gz, pair_load,
                           root1, root2, abs(T1 - torque) / torque, T2 / T1 if T1 else np.nan, sol.iterations,
                           sol.residual, sol.active, ds)
 

@@ -13,7 +13,7 @@ import numpy as np
 from geometry.cylindrical import flank_point_normal
 import geometry.involute as involute_mod
 from geometry.involute import GearBlank, RackCutter, ShaperCutter, ToothProfile, generate_by_rack, involute, inverse_involute
-from geometry.modification import FlankModification
+from geometry.modification import FlankModification, profile_slope_from_roll_ratio
 from geometry.pair import CylindricalPair
 
 from .case import CylindricalCase, Member
@@ -36,6 +36,7 @@ class PairModel:
     r_bore2: float
     gear_side: int          # which side label of the gear outline carries the load
     phi_pitch: float        # pinion rotation where tooth 0 touches at the pitch point (rad)
+    gear_shift: int = 0     # gear tooth index change per pinion mesh cycle (physical tooth bookkeeping)
 
     @property
     def pitch_angle(self) -> float:
@@ -66,21 +67,28 @@ def working_centre_distance(case: CylindricalCase) -> float:
     return 0.5 * mt * (z1 + z2) * np.cos(at) / np.cos(aw)
 
 
-def _modification(m, r_tip: float, name: str) -> FlankModification:
+def _modification(m, profile: ToothProfile, name: str) -> FlankModification:
+    r_tip = profile.r_tip
     start = None
     if m.tip_relief_start_diameter is not None:
         start = 0.5 * m.tip_relief_start_diameter
         if start >= r_tip:
             raise CaseError(f"{name}.modifications.tip_relief_start_diameter_mm", m.tip_relief_start_diameter,
                             f"smaller than the tip diameter {2 * r_tip:.3f} mm")
+    slope = m.profile_slope
+    if m.roll_ratio_error:
+        rf = profile.r_form_right
+        lo, hi = (r_tip, rf) if profile.internal else (rf, r_tip)
+        slope += profile_slope_from_roll_ratio(m.roll_ratio_error, profile.r_base, lo, hi)
     return FlankModification(m.tip_relief, start, m.tip_relief_exponent, m.profile_crowning, m.lead_crowning,
-                             m.lead_slope, m.pitch_errors)
+                             m.lead_slope, m.pitch_errors, slope)
 
 
 def _profile(case: CylindricalCase, member: Member, beta: float, name: str) -> ToothProfile:
     try:
         blank = GearBlank(z=member.teeth, m_n=case.module, alpha_n=case.pressure_angle, beta=beta,
-                          x=member.profile_shift, d_tip=member.tip_diameter, internal=member.internal)
+                          x=member.profile_shift, d_tip=member.tip_diameter, internal=member.internal,
+                          thickness_allowance=member.thickness_allowance)
         if member.internal:
             cutter = ShaperCutter(z0=case.shaper_teeth, x0=case.shaper_profile_shift, ha0=case.rack_addendum,
                                   rho0=case.rack_tip_radius)
@@ -143,6 +151,11 @@ def build_model(case: CylindricalCase) -> PairModel:
     s = pair.separation(0.0, P, N)
     x, y = P[0, 0], P[0, 1]
     phi_pitch = float(np.arctan2(x, y))
-    return PairModel(case, p1, p2, pair, _modification(case.pinion.modifications, p1.r_tip, "pinion"),
-                     _modification(case.gear.modifications, p2.r_tip, "gear"), b, r_b, r_b2,
-                     int(s.gear_side[0]) or 1, phi_pitch)
+    # the gear tooth that meets the same world point one mesh cycle later (pinion tooth -1 then stands
+    # where tooth 0 was): the index step per cycle, for the physical bookkeeping of tooth errors
+    P1, N1 = flank_point_normal(p1, +1, np.array([pair.r_w1]), np.zeros(1), -1)
+    s1 = pair.separation(-2 * np.pi / p1.z, P1, N1)
+    shift = int(s1.gear_tooth[0] - s.gear_tooth[0])
+    return PairModel(case, p1, p2, pair, _modification(case.pinion.modifications, p1, "pinion"),
+                     _modification(case.gear.modifications, p2, "gear"), b, r_b, r_b2,
+                     int(s.gear_side[0]) or 1, phi_pitch, shift)

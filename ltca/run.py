@@ -20,9 +20,10 @@ from .tca import ARCSEC, unloaded_tca
 __all__ = ["run_case", "run_tca", "cycle_rolls", "analyse"]
 
 
-def cycle_rolls(n: int, z1: int) -> np.ndarray:
-    """``n`` pinion roll angles (rad) over one mesh cycle, centred on the pitch point of tooth 0."""
-    return (np.arange(n) / n - 0.5) * 2 * np.pi / z1
+def cycle_rolls(n: int, z1: int, cycles: int = 1) -> np.ndarray:
+    """``n`` pinion roll angles (rad) per mesh cycle over ``cycles`` cycles, starting half a cycle before
+    the pitch point of tooth 0."""
+    return (np.arange(n * cycles) / n - 0.5) * 2 * np.pi / z1
 
 
 def _progress(enabled: bool):
@@ -38,21 +39,23 @@ def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = 
 
     With ``log``, each finished position is appended to that JSON-lines file at once, so a crash
     loses nothing already finished."""
+    from threadpoolctl import threadpool_limits
+
+    from .tca import split_roll
     out: list[PositionResult] = []
-    it = rolls
+    steps = list(zip(*split_roll(lm.model, np.asarray(rolls))))
     if progress:
         from tqdm import tqdm
-        it = tqdm(rolls, desc=f"positions at {torque * 1e-3:g} N m", unit="pos", file=sys.stderr)
+        steps = tqdm(steps, desc=f"positions at {torque * 1e-3:g} N m", unit="pos", file=sys.stderr)
     warm = None
-    from threadpoolctl import threadpool_limits
-    for r in it:
+    for r, n in steps:
         # small dense factorisations: one BLAS thread is faster than two fighting for the cores
         with threadpool_limits(limits=1, user_api="blas"):
-            warm = solve_position(lm, float(r), torque, warm=warm)
+            warm = solve_position(lm, float(r), torque, warm=warm, cycle=int(n))
         out.append(warm)
         if log is not None:
             with open(log, "a") as fh:
-                fh.write(json.dumps({"torque_nm": torque * 1e-3, "roll_deg": float(np.degrees(r)),
+                fh.write(json.dumps({"torque_nm": torque * 1e-3, "roll_deg": float(np.degrees(warm.roll)),
                                      "te_loaded_arcsec": warm.theta / lm.model.pair.ratio * ARCSEC,
                                      "max_pressure_mpa": warm.max_pressure,
                                      "pair_load_n": {str(k): v for k, v in warm.pair_load.items()},
@@ -74,9 +77,11 @@ def run_case(case_path: str, out: str = "out", fidelity: str | None = None, posi
     model = build_model(case)
     t_geom = time.perf_counter() - t0
     fid = Fidelity.from_preset(FIDELITIES[fid_name], case.module)
-    rolls = cycle_rolls(n_pos, case.pinion.teeth)
-    say(f"{case.name}: {n_pos} positions, fidelity '{fid_name}' (flank elements {fid.h_flank:.2f} mm)")
-    lm = prepare(model, fid, rolls, max(case.torques), cache_dir=cache, progress=say)
+    rolls = cycle_rolls(n_pos, case.pinion.teeth, case.cycles)
+    say(f"{case.name}: {n_pos} positions per cycle x {case.cycles} cycle(s), fidelity '{fid_name}' "
+        f"(flank elements {fid.h_flank:.2f} mm)")
+    lm = prepare(model, fid, cycle_rolls(n_pos, case.pinion.teeth), max(case.torques), cache_dir=cache,
+                 progress=say)
     outdir = Path(out)
     if write:
         outdir.mkdir(parents=True, exist_ok=True)
@@ -93,7 +98,7 @@ def run_case(case_path: str, out: str = "out", fidelity: str | None = None, posi
         ds = position_dataset(lm, results, torque)
         timings = {"geometry": t_geom + lm.timings["tca"], "mesh": lm.timings["mesh"],
                    "compliance": sum(lm.timings[k] for k in ("assembly", "factorisation", "setup", "solves")),
-                   "contact": t_contact, "contact_per_position": t_contact / n_pos,
+                   "contact": t_contact, "contact_per_position": t_contact / len(rolls),
                    "total": time.perf_counter() - t_start}
         converged = all(r.residual < 1e-6 for r in results)
         summaries.append(summary(lm, ds, timings, converged))

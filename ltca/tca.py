@@ -17,7 +17,8 @@ from geometry.modification import modification_depth
 
 from .model import PairModel
 
-__all__ = ["FlankGaps", "flank_gaps", "TCAResult", "unloaded_tca", "first_contact", "contact_ratio", "ARCSEC"]
+__all__ = ["FlankGaps", "flank_gaps", "TCAResult", "unloaded_tca", "first_contact", "contact_ratio", "ARCSEC",
+           "split_roll", "double_flank_tca"]
 
 ARCSEC = 180 * 3600 / np.pi   # arcsec per rad
 
@@ -41,18 +42,25 @@ class FlankGaps:
     world: np.ndarray        # world frame points
 
 
-def flank_gaps(model: PairModel, phi1: float, tooth: int, s: np.ndarray, z: np.ndarray) -> FlankGaps:
-    """Gaps at pinion flank arc lengths ``s`` and axial positions ``z`` (broadcast) of ``tooth``."""
+def flank_gaps(model: PairModel, phi1: float, tooth: int, s: np.ndarray, z: np.ndarray, side: int = 1,
+               cycle: int = 0) -> FlankGaps:
+    """Gaps at pinion flank arc lengths ``s`` and axial positions ``z`` (broadcast) of ``tooth``.
+
+    ``side`` +1 is the drive (right) flank, -1 the coast (left) flank. ``cycle`` counts the mesh
+    cycles travelled: the model's teeth then stand for the physical teeth ``tooth - cycle`` of the
+    pinion and ``gear_tooth + model.gear_shift * cycle`` of the gear, whose errors apply."""
     p1, p2 = model.pinion, model.gear
     s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
     r = radius_of_arc(s, p1.r_base)
-    P, N = flank_point_normal(p1, +1, r, z, tooth=tooth)
-    sep = model.pair.separation(phi1, P, N)
+    P, N = flank_point_normal(p1, side, r, z, tooth=tooth)
+    sep = model.pair.separation(phi1, P, N, side)
     b = model.face_width
-    g = sep.gap + modification_depth(model.mod1, r, z, tooth, p1.r_base, p1.r_form_right, p1.r_tip, b)
+    g = sep.gap + modification_depth(model.mod1, r, z, tooth - cycle, p1.r_base, p1.r_form_right, p1.r_tip, b,
+                                     p1.z, side)
     r2 = np.clip(sep.gear_r, p2.r_base, None)
     rf2 = p2.r_form_right if model.gear_side > 0 else p2.r_form_left
-    g = g + modification_depth(model.mod2, r2, sep.gear_z, sep.gear_tooth, p2.r_base, rf2, p2.r_tip, b)
+    g = g + modification_depth(model.mod2, r2, sep.gear_z, sep.gear_tooth + model.gear_shift * cycle, p2.r_base,
+                               rf2, p2.r_tip, b, p2.z, side)
     return FlankGaps(tooth, r, s, z, g, sep.lever1, sep.lever2, sep.gear_tooth, sep.gear_r,
                      arc_length(r2, p2.r_base), sep.gear_z, P, N, sep.points)
 
@@ -104,7 +112,8 @@ def scan_grid(model: PairModel, ns: int = 240, nz: int = 9) -> tuple[np.ndarray,
     return s, np.linspace(-0.5 * b, 0.5 * b, nz)
 
 
-def first_contact(model: PairModel, phi1: float, teeth, ns: int = 240, nz: int = 9, detail: bool = False):
+def first_contact(model: PairModel, phi1: float, teeth, ns: int = 240, nz: int = 9, detail: bool = False,
+                  side: int = 1, cycle: int = 0):
     """Smallest pinion rotation (rad, driving direction) that closes a gap at pinion angle ``phi1``.
 
     The separation field is scanned on an (ns, nz) flank grid per tooth, then the minimum of g/h is
@@ -115,7 +124,7 @@ def first_contact(model: PairModel, phi1: float, teeth, ns: int = 240, nz: int =
     S, Z = np.meshgrid(s, z, indexing="ij")
     best, where, per_tooth = np.inf, (0, 0.0, 0.0), []
     for k in teeth:
-        fg = flank_gaps(model, phi1, int(k), S, Z)
+        fg = flank_gaps(model, phi1, int(k), S, Z, side, cycle)
         ok = np.isfinite(fg.gap) & (fg.lever1 > 0)
         if not ok.any():
             per_tooth.append(np.inf)
@@ -129,13 +138,13 @@ def first_contact(model: PairModel, phi1: float, teeth, ns: int = 240, nz: int =
             trial = np.clip(trial, s[0], s[-1])
             if trial[0] == trial[1] or trial[1] == trial[2]:
                 break
-            f = flank_gaps(model, phi1, int(k), trial, np.full(3, z[j]))
+            f = flank_gaps(model, phi1, int(k), trial, np.full(3, z[j]), side, cycle)
             qq = f.gap / f.lever1
             den = qq[0] - 2 * qq[1] + qq[2]
             if not np.all(np.isfinite(qq)) or den <= 0:
                 break
             sv = np.clip(sk + 0.5 * h * (qq[0] - qq[2]) / den, s[0], s[-1])
-            fv = flank_gaps(model, phi1, int(k), np.array([sv]), np.array([z[j]]))
+            fv = flank_gaps(model, phi1, int(k), np.array([sv]), np.array([z[j]]), side, cycle)
             qv = fv.gap[0] / fv.lever1[0]
             if np.isfinite(qv) and qv < qk:
                 qk, sk = qv, sv
@@ -163,3 +172,26 @@ def unloaded_tca(model: PairModel, roll: np.ndarray, teeth=range(-3, 4), ns: int
     te = theta0 / model.pair.ratio * ARCSEC
     ea, eb = contact_ratio(model)
     return TCAResult(roll, theta0, te, ct, cr, cz, min_gap, teeth, ea, eb)
+
+
+def split_roll(model: PairModel, roll: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Roll angles over several mesh cycles -> (roll within the cycle around tooth 0, cycle index)."""
+    pitch = model.pitch_angle
+    cycle = np.round(np.asarray(roll, float) / pitch).astype(int)
+    return np.asarray(roll, float) - cycle * pitch, cycle
+
+
+def double_flank_tca(model: PairModel, roll: np.ndarray, teeth=range(-2, 3)) -> tuple[np.ndarray, np.ndarray]:
+    """Unloaded drive- and coast-side TE (arcsec of the gear) at pinion roll angles ``roll`` (rad, any range).
+
+    Sign as in seed 003: TE = gear position minus its kinematic position (positive = ahead). The drive
+    flanks touch with the gear behind (TE <= 0), the coast flanks with the gear ahead, so the backlash
+    curve is coast TE minus drive TE (>= 0 when the pair has play)."""
+    r_c, cyc = split_roll(model, roll)
+    drive, coast = np.empty(len(r_c)), np.empty(len(r_c))
+    for i, (rc, n) in enumerate(zip(r_c, cyc)):
+        phi1 = model.phi_pitch - rc
+        drive[i] = -first_contact(model, phi1, teeth, ns=160, nz=5, side=+1, cycle=int(n))
+        coast[i] = first_contact(model, phi1, teeth, ns=160, nz=5, side=-1, cycle=int(n))
+    scale = ARCSEC / model.pair.ratio
+    return drive * scale, coast * scale

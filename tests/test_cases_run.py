@@ -7,7 +7,7 @@ import pytest
 
 from conftest import CASES
 
-CYLINDRICAL = ["fzg_c14.toml", "helical_c14.toml", "internal_spur.toml"]
+CYLINDRICAL = ["fzg_c14.toml", "helical_c14.toml", "internal_spur.toml", "fzg_c14_pitch_errors.toml"]
 
 
 @pytest.mark.parametrize("name", CYLINDRICAL)
