@@ -7,7 +7,6 @@ Case units: mm, deg, arcsec; converted once here to mm and rad.  Mistakes raise
 from __future__ import annotations
 
 import json
-import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -64,13 +63,9 @@ def _table(raw: dict, spec: dict, name: str, file: str, optional: tuple = ()) ->
 
 def load_bevel_case(case_path: str | Path) -> dict:
     """Read and validate a bevel case; returns the basic data, the targets and the blank offset."""
+    from .case import read_toml
     path = Path(case_path)
-    if not path.is_file():
-        raise CaseError("CASE", str(path), "an existing case file (.toml)")
-    try:
-        data = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError("file", path.name, f"valid TOML ({exc})", str(path)) from None
+    data = read_toml(path)
     f = str(path)
     raw = data.get("bevel")
     if not isinstance(raw, dict):

@@ -32,7 +32,6 @@ and its own angle referred to the reference shaft is theta_member / ratio.
 from __future__ import annotations
 
 import os
-import tomllib
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -308,11 +307,8 @@ def load_budget_case(path: str) -> tuple[DriveTrain, np.ndarray]:
     CaseError
         On a missing, mistyped, out-of-range or unknown field.
     """
-    with open(path, "rb") as fh:
-        try:
-            doc = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise CaseError("<file>", str(exc), "valid TOML", file=path) from None
+    from .case import read_toml
+    doc = read_toml(path)
     try:
         _known(doc, {"budget", "member", "backlash"}, "case")
         head = doc.get("budget")
@@ -366,8 +362,8 @@ def plot_budget(result: BudgetResult, path: str) -> None:
 
 def _backlash_table(path: str) -> dict | None:
     """The optional ``[backlash]`` table: a cylindrical pair whose double-flank TE gives the backlash curve."""
-    with open(path, "rb") as fh:
-        tab = tomllib.load(fh).get("backlash")
+    from .case import read_toml
+    tab = read_toml(path).get("backlash")
     if tab is None:
         return None
     try:

@@ -14,7 +14,7 @@ from typing import Any
 
 from .errors import CaseError
 
-__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "FIDELITIES"]
+__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "FIDELITIES"]
 
 DEG = math.pi / 180.0
 
@@ -251,13 +251,17 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
         fidelity_params=dict(FIDELITIES[ana["fidelity"]]), source=c["source"] or None)
 
 
-def load_case(path: str | Path) -> CylindricalCase:
-    """Read and validate a case file; raise CaseError for any user mistake."""
+def read_toml(path: str | Path) -> dict:
+    """Read a case file as a dict; a missing file or broken TOML is a CaseError (exit status 2)."""
     path = Path(path)
     if not path.is_file():
         raise CaseError("CASE", str(path), "an existing case file (.toml)")
     try:
-        data = tomllib.loads(path.read_text())
+        return tomllib.loads(path.read_text())
     except tomllib.TOMLDecodeError as exc:
         raise CaseError("file", path.name, f"valid TOML ({exc})", str(path)) from None
-    return parse_case(data, file=str(path))
+
+
+def load_case(path: str | Path) -> CylindricalCase:
+    """Read and validate a case file; raise CaseError for any user mistake."""
+    return parse_case(read_toml(path), file=str(path))

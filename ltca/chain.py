@@ -22,7 +22,6 @@ recomputes everything by the rules (see the case file and tests/test_chain.py fo
 from __future__ import annotations
 
 import os
-import tomllib
 from dataclasses import dataclass
 
 import numpy as np
@@ -413,11 +412,8 @@ def load_chain_case(path: str) -> tuple[Chain, ...]:
     CaseError
         Naming the field on any bad, unknown or missing value, or a chain that does not close.
     """
-    with open(path, "rb") as fh:
-        try:
-            doc = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise CaseError("<file>", str(exc), "valid TOML", file=path) from None
+    from .case import read_toml
+    doc = read_toml(path)
     try:
         _known(doc, {"machine", "workpiece", "chain"}, "case")
         wp = doc.get("workpiece")

@@ -22,13 +22,8 @@ def _cmd_run(a: argparse.Namespace) -> int:
 
 
 def _cmd_tca(a: argparse.Namespace) -> int:
-    import tomllib
-    from pathlib import Path
-    try:
-        bevel = "bevel" in tomllib.loads(Path(a.case).read_text())
-    except (OSError, tomllib.TOMLDecodeError):
-        bevel = False          # load_case reports the problem with the file
-    if bevel:
+    from .case import read_toml
+    if "bevel" in read_toml(a.case):
         from .bevel import run_bevel_tca
         run_bevel_tca(a.case, out=a.out)
         return 0
