@@ -227,101 +227,115 @@ def _near_field_block(I, J, d1, d2, Vs, Vz, E, nu, quantum=0.01):
     return out
 
 
+@dataclass(frozen=True)
+class _System:
+    """The contact problem of one position: cells, their unloaded gaps, levers, areas and compliance."""
+    tooth: np.ndarray
+    slice: np.ndarray
+    lattice: np.ndarray
+    s: np.ndarray
+    z: np.ndarray
+    gap0: np.ndarray
+    lever1: np.ndarray
+    lever2: np.ndarray
+    gear_tooth: np.ndarray
+    gear_s: np.ndarray
+    gear_z: np.ndarray
+    area: np.ndarray
+    C: np.ndarray
+    W1: object
+    W2: object
+
+
+def _system(lm: LoadedModel, phi1: float, strips, zc, dz: float, ds: float, cycle: int) -> _System:
+    """Gaps (separation field + micro-geometry), compliance (FE far field of both bodies, bilinearly
+    interpolated, plus the half-space near field) and cell areas of the strips of one position."""
+    model, fid = lm.model, lm.fid
+    p1 = model.pinion
+    tooth = np.concatenate([np.full(len(x), k) for k, _, x, _, _, _ in strips])
+    sl = np.concatenate([np.full(len(x), j) for _, j, x, _, _, _ in strips])
+    lat = np.concatenate([x for _, _, x, _, _, _ in strips])
+    s = np.concatenate([x for _, _, _, x, _, _ in strips])
+    z = zc[sl]
+    n = len(s)
+    g0, h1, h2 = np.empty(n), np.empty(n), np.empty(n)
+    gt, gs, gz = np.empty(n, int), np.empty(n), np.empty(n)
+    P = np.empty((n, 3))
+    for k in np.unique(tooth):
+        m = tooth == k
+        fg = flank_gaps(model, phi1, int(k), s[m], z[m], cycle=cycle)
+        g0[m], h1[m], h2[m] = fg.gap, fg.lever1, fg.lever2
+        gt[m], gs[m], gz[m], P[m] = fg.gear_tooth, fg.gear_s, fg.gear_z, fg.points
+    # cell geometry: flank tangents by central differences (the flank is exact), areas
+    eps = 1e-4
+    ra = np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s + eps))
+    Pa, _ = flank_point_normal(p1, +1, ra, z, tooth=0)
+    Pb, _ = flank_point_normal(p1, +1, np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s - eps)), z, tooth=0)
+    Pz1, _ = flank_point_normal(p1, +1, ra, z + eps, tooth=0)
+    Ps, Pz = (Pa - Pb) / (2 * eps), (Pz1 - Pa) / eps
+    area = np.linalg.norm(np.cross(Ps, Pz), axis=1) * ds * dz
+    W1 = lm.body1.weights(tooth, s, z)
+    W2 = lm.body2.weights(gt, gs, gz)
+    C = np.asarray(W1 @ (W1 @ lm.body1.C).T) + np.asarray(W2 @ (W2 @ lm.body2.C).T)
+    if fid.near_field:
+        d1 = np.interp(s, lm.body1.s_grid, lm.body1.depth)
+        d2 = np.interp(gs, lm.body2.s_grid, lm.body2.depth)
+        E, nu = model.case.young, model.case.poisson
+        for k in np.unique(tooth):
+            m = np.flatnonzero(tooth == k)
+            c = m[len(m) // 2]
+            C[np.ix_(m, m)] += _near_field_block(lat[m], sl[m], d1[m], d2[m], Ps[c] * ds, Pz[c] * dz, E, nu)
+    else:   # the coarse FE alone is (nearly) singular at sub-element spacing: a trace of regularisation
+        C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
+    return _System(tooth, sl, lat, s, z, g0, h1, h2, gt, gs, gz, area, 0.5 * (C + C.T), W1, W2)
+
+
 def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionResult | None = None,
                    max_widen: int = 3, cycle: int = 0) -> PositionResult:
     """Loaded contact at pinion roll angle ``roll`` (rad from the pitch point) under ``torque`` (N mm).
 
     ``roll`` lies within the mesh cycle around tooth 0; ``cycle`` (mesh cycles travelled) selects which
-    physical teeth the modelled ones stand for, so that tooth errors follow the revolution."""
-    model, fid = lm.model, lm.fid
-    case = model.case
-    E, nu = case.young, case.poisson
+    physical teeth the modelled ones stand for, so that tooth errors follow the revolution. A strip
+    whose outer cell carries load is widened and the position solved again (up to ``max_widen`` times).
+    """
+    model = lm.model
     phi1 = model.phi_pitch - roll
-    p1, p2 = model.pinion, model.gear
-    theta_guess = warm.theta if warm is not None else torque / (p1.r_base ** 2 * 14.0e3 * model.face_width)
+    rb1 = model.pinion.r_base
+    theta_guess = warm.theta if warm is not None else torque / (rb1 ** 2 * 14.0e3 * model.face_width)
     widen: dict = {}
-    for attempt in range(max_widen + 1):
+    for _ in range(max_widen + 1):
         strips, zc, dz, ds = _cells(lm, phi1, theta_guess, widen, torque, cycle)
         if not strips:
             raise ConvergenceError("contact search", float("inf"), 0,
                                    "no tooth pair comes near contact: check the centre distance and the positions")
-        tooth = np.concatenate([np.full(len(x), k) for k, _, x, _, _, _ in strips])
-        sl = np.concatenate([np.full(len(x), j) for _, j, x, _, _, _ in strips])
-        lat = np.concatenate([x for _, _, x, _, _, _ in strips])
-        s = np.concatenate([x for _, _, _, x, _, _ in strips])
-        dsv = np.full(len(s), ds)
-        z = zc[sl]
-        gaps = []
-        for k in np.unique(tooth):
-            m = tooth == k
-            gaps.append((m, flank_gaps(model, phi1, int(k), s[m], z[m], cycle=cycle)))
-        n = len(s)
-        g0, h1, h2 = np.empty(n), np.empty(n), np.empty(n)
-        gt, gs, gz = np.empty(n, int), np.empty(n), np.empty(n)
-        P = np.empty((n, 3))
-        for m, fgk in gaps:
-            g0[m], h1[m], h2[m] = fgk.gap, fgk.lever1, fgk.lever2
-            gt[m], gs[m], gz[m] = fgk.gear_tooth, fgk.gear_s, fgk.gear_z
-            P[m] = fgk.points
-        # cell geometry: tangent along the profile, area, local coordinates per tooth block
-        eps = 1e-4
-        r_a = np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s + eps))
-        r_b_ = np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s - eps))
-        Pa, _ = flank_point_normal(p1, +1, r_a, z, tooth=0)
-        Pb, _ = flank_point_normal(p1, +1, r_b_, z, tooth=0)
-        Pz1, _ = flank_point_normal(p1, +1, r_a, z + eps, tooth=0)
-        Ps = (Pa - Pb) / (2 * eps)
-        Pz = (Pz1 - Pa) / eps
-        area = np.linalg.norm(np.cross(Ps, Pz), axis=1) * dsv * dz
-        ok = np.isfinite(g0) & (h1 > 0)
-        # compliance: FE far field of both bodies + half-space near field
-        W1 = lm.body1.weights(tooth, s, z)
-        W2 = lm.body2.weights(gt, gs, gz)
-        C = W1 @ (W1 @ lm.body1.C).T
-        C += W2 @ (W2 @ lm.body2.C).T
-        C = np.asarray(C)
-        d1 = np.interp(s, lm.body1.s_grid, lm.body1.depth)
-        d2 = np.interp(gs, lm.body2.s_grid, lm.body2.depth)
-        if fid.near_field:
-            for k in np.unique(tooth):
-                m = np.flatnonzero(tooth == k)
-                c = m[len(m) // 2]
-                C[np.ix_(m, m)] += _near_field_block(lat[m], sl[m], d1[m], d2[m], Ps[c] * ds, Pz[c] * dz, E, nu)
-        else:
-            C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
-        C = 0.5 * (C + C.T)
-        g_use = np.where(ok, g0, np.inf)
-        active0 = ok & (g0 - h1 * theta_guess < 0)
+        sy = _system(lm, phi1, strips, zc, dz, ds, cycle)
+        ok = np.isfinite(sy.gap0) & (sy.lever1 > 0)
+        active0 = ok & (sy.gap0 - sy.lever1 * theta_guess < 0)
         try:
-            sol = solve_contact(C, g_use, np.where(ok, h1, 1.0), torque, active0=active0 if active0.any() else None)
+            sol = solve_contact(sy.C, np.where(ok, sy.gap0, np.inf), np.where(ok, sy.lever1, 1.0), torque,
+                                active0=active0 if active0.any() else None)
         except ContactNotConverged as exc:
             raise ConvergenceError(f"contact at roll {np.degrees(roll):.3f} deg", exc.residual, exc.iterations,
                                    exc.advice) from None
         F = sol.force
-        # strips whose loaded border cell carries force are too narrow: widen and solve again
-        more = False
-        i0 = 0
+        theta_guess = sol.approach
+        more, i0 = False, 0
         for k, j, _, sv, open_lo, open_hi in strips:
             f = F[i0:i0 + len(sv)]
-            if (open_lo and f[0] > 1e-9 * torque / p1.r_base) or (open_hi and f[-1] > 1e-9 * torque / p1.r_base):
+            if (open_lo and f[0] > 1e-9 * torque / rb1) or (open_hi and f[-1] > 1e-9 * torque / rb1):
                 widen[(k, j)] = widen.get((k, j), 1.0) * 1.7
                 more = True
             i0 += len(sv)
-        theta_guess = sol.approach
         if not more:
             break
-    pressure = F / area
-    pair_load = {int(k): float(F[tooth == k].sum()) for k in lm.teeth1}
-    f1 = W1.T @ F
-    f2 = W2.T @ F
-    root1 = _root(lm.body1, f1)
-    root2 = _root(lm.body2, f2)
-    T1 = float(F @ h1)
-    T2 = float(F @ h2)
+    T1, T2 = float(F @ sy.lever1), float(F @ sy.lever2)
     theta0 = float(first_contact(model, phi1, lm.teeth1, cycle=cycle))
-    return PositionResult(float(roll + cycle * model.pitch_angle), float(sol.approach), theta0, tooth, lat, sl, s, z, area, F, pressure, g0, gt, gs, gz, pair_load,
-                          root1, root2, abs(T1 - torque) / torque, T2 / T1 if T1 else np.nan, sol.iterations,
-                          sol.residual, sol.active, ds)
+    return PositionResult(
+        float(roll + cycle * model.pitch_angle), float(sol.approach), theta0, sy.tooth, sy.lattice, sy.slice, sy.s,
+        sy.z, sy.area, F, F / sy.area, sy.gap0, sy.gear_tooth, sy.gear_s, sy.gear_z,
+        {int(k): float(F[sy.tooth == k].sum()) for k in lm.teeth1},
+        _root(lm.body1, sy.W1.T @ F), _root(lm.body2, sy.W2.T @ F), abs(T1 - torque) / torque,
+        T2 / T1 if T1 else np.nan, sol.iterations, sol.residual, sol.active, ds)
 
 
 def _root(body: BodyCompliance, f: np.ndarray) -> dict:
