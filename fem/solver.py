@@ -11,6 +11,21 @@ One factorisation serves many right-hand sides (the compliance of a gear body is
 - ``"splu"``: scipy SuperLU; always available, far slower beyond ~50k dofs.
 
 Measured on the 2-core machine: see DESIGN.md, "Measured on this machine".
+
+Back-substitution cost (FZG C14 pinion body: 63k free dofs, 216 patch loads, 1476 observed rows;
+2 shared cores, medians of 3):
+
+- MKL's default ``iparm(8) = 2`` (which pypardiso inherits) runs two steps of iterative refinement
+  in *every* phase-33 solve: three back-substitutions plus two residuals, 10.5 s. Without
+  refinement, 2.7-3.0 s, and the answers differ by 6e-13 relative. A Cholesky factor without
+  perturbed pivots needs no refinement, so it is switched off when ``iparm(14) == 0``.
+- MKL's partial solve (``iparm(31)``, sparse right-hand sides and selected solution components)
+  is silently ignored unless set before the analysis phase; set there, with the ~10k load and
+  observed dofs marked, it gives a factor ~8x slower (~26 s against ~3 s) and a solve no faster
+  than the plain one without refinement. Not used.
+- ``iparm(25)`` (parallel solve variants) made no difference.
+- With `observe`, ``observe @ K^-1 @ F = (K^-1 @ observe.T).T @ F`` (K symmetric), so the cheaper
+  side is solved for: the loads when ``k <= r``, the observed rows when ``r < k``.
 """
 from __future__ import annotations
 
@@ -72,7 +87,8 @@ class Factorization:
         observe : sparse or ndarray, (r, n), optional
             If given, return ``observe @ u`` instead of ``u`` (e.g. an
             `interpolation_matrix`), computed block by block so that the full
-            (n, k) displacement array never exists.
+            (n, k) displacement array never exists. When ``r < k`` the r observed
+            rows are solved for instead of the k loads (``K`` is symmetric).
         block : int, optional
             Right-hand sides per back-substitution; default keeps a block near 400 MB.
 
@@ -97,6 +113,10 @@ class Factorization:
         if block < 1:
             raise ValueError(f"block = {block}: must be >= 1")
         obs_free = None if observe is None else sp.csr_matrix(observe)[:, self.free]
+        if obs_free is not None and obs_free.shape[0] < k:
+            # fewer observed rows than loads: solve for the rows (K symmetric) and contract
+            out = self._solve_observed(obs_free, F[self.free], block)
+            return out[:, 0] if vector else out
         rows = self.n if observe is None else observe.shape[0]
         out = np.zeros((rows, k))
         for s in range(0, k, block):
@@ -108,6 +128,17 @@ class Factorization:
             else:
                 out[:, s:s + block] = obs_free @ x
         return out[:, 0] if vector else out
+
+    def _solve_observed(self, obs_free: sp.csr_matrix, F_free: Any, block: int) -> np.ndarray:
+        """``obs_free @ Kff^-1 @ F_free`` as ``(Kff^-1 @ obs_free.T).T @ F_free``, block by block."""
+        r = obs_free.shape[0]
+        out = np.zeros((r, F_free.shape[1]))
+        obs_t = sp.csc_matrix(obs_free.T)
+        for s in range(0, r, block):
+            b = obs_t[:, s:s + block].toarray(order="F")
+            y = self._solve_free(b).reshape(b.shape)
+            out[s:s + block] = np.asarray((F_free.T @ y).T)
+        return out
 
     def release(self) -> None:
         """Free the back-end's factor memory now (PARDISO keeps it outside Python)."""
@@ -134,6 +165,12 @@ def _pardiso(Kff: sp.csr_matrix, symmetric: bool):
     A.sort_indices()
     solver.factorize(A)
     solver.remove_stored_factorization()
+    # After the first call MKL has filled ``iparm`` with its defaults (``iparm(1) = 1``), among
+    # them ``iparm(8) = 2``: two steps of iterative refinement in every solve, which triples the
+    # back-substitution cost. They only pay off against perturbed pivots (``iparm(14)``), which a
+    # Cholesky factor of an SPD matrix never has; the factorisation itself is unchanged.
+    if solver.get_iparm(14) == 0:
+        solver.set_iparm(8, 0)
 
     def solve(b: np.ndarray) -> np.ndarray:
         # phase 33 = back-substitution with the stored factor; documented by pypardiso
