@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from geometry.cylindrical import flank_point_normal
+from geometry.cylindrical import helical_flank
 from .elastic import assemble_stiffness, interpolation_matrix, patch_loads, stress_matrix
 from .mesh import SegmentSpec, build_segment
 from .solver import factorize
@@ -183,21 +183,17 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     # ---- the flank grid, its depth points and the patch loads
     t0 = time.perf_counter()
     ns, nz = spec.grid
-    rb = profile.r_base
-    s_grid = np.linspace(arc_length(spec.r_range[0], rb), arc_length(spec.r_range[1], rb), ns)
-    r_grid = radius_of_arc(s_grid, rb)
     b = spec.face_width
-    z_grid = np.linspace(-0.5 * b, 0.5 * b, nz)
+    # the loaded flanks as gridded Flank records (geometry's currency): exact points and normals
+    flanks = [helical_flank(profile, spec.side, b, ns, nz, r_range=tuple(spec.r_range), tooth=k) for k in spec.loaded]
+    r_grid, z_grid = flanks[0].u, flanks[0].v
+    s_grid = arc_length(r_grid, profile.r_base)
     # matching depth, at most 30 % of the local tooth thickness (the tooth gets thin near the tip)
     half_angle = np.abs(profile.flank_angle(r_grid, spec.side))
     thick = 2 * r_grid * np.sin(np.clip(half_angle, 0, np.pi / 2))
     depth = np.minimum(spec.depth, 0.3 * thick)
-    pts, nrm = [], []
-    for k in spec.loaded:
-        P, N = flank_point_normal(profile, spec.side, r_grid[:, None], z_grid[None, :], tooth=k)
-        pts.append(P.reshape(-1, 3))
-        nrm.append(N.reshape(-1, 3))
-    X, Nn = np.concatenate(pts), np.concatenate(nrm)
+    X = np.concatenate([f.points.reshape(-1, 3) for f in flanks])
+    Nn = np.concatenate([f.normals.reshape(-1, 3) for f in flanks])
     Y = X - np.tile(np.repeat(depth, nz), len(spec.loaded))[:, None] * Nn
     names = [f"{kind}_{k}_{'right' if spec.side > 0 else 'left'}" for k in spec.loaded
              for kind in ("flank", "fillet")] + [f"tip_{k}" for k in spec.loaded]

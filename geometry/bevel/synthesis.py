@@ -33,7 +33,7 @@ from .blank import BevelBlank
 from .cutter import HeadCutter
 from .generation import MeshingError, _guess, solve_axial_points, surface_state
 from .machine import FlankCut, MachineSettings, MemberCut, roll
-from .tca import ARCSEC, mesh_frames
+from .tca import ARCSEC, drive_sign, mesh_frames
 
 __all__ = ["FlankTarget", "MeanContact", "second_order", "generated_curvature", "mean_contact",
            "path_tangent", "pinion_curvature", "local_synthesis", "te_curvature"]
@@ -198,7 +198,7 @@ def pinion_curvature(blank: BevelBlank, mc: MeanContact, target: FlankTarget) ->
     n = -mc.n_h                                          # pinion outward normal
     e = mc.B2 @ _rz(mc.phi2) @ path_tangent(blank, mc.r2, mc.n2, target.eta2)
     m21 = te_curvature(target.te_magnitude, blank.pinion.z)
-    dw2 = -m21 * mc.B2[:, 2]
+    dw2 = -drive_sign(mc.r2, mc.n2) * m21 * mc.B2[:, 2]        # m21 in the driven sense (tca.drive_sign)
     b, d0, v12 = second_order(mc.r_h, n, mc.K2_h, mc.w1, mc.O1, mc.w2, mc.O2, dw2=dw2)
     be = b @ e
     if abs(be) < 1e-12 * np.linalg.norm(b):

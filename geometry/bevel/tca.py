@@ -10,8 +10,9 @@ Members turn by phi1 about z1 and phi2 about z2; in mesh phi2 ~ -(z1/z2) phi1.
 Continuous-tangency TCA (Litvin & Fuentes 2004, sec. 9.4 and 20.7): for each pinion angle phi1 solve
 r1_h = r2_h, n1_h = -n2_h, f1 = 0, f2 = 0 for the seven unknowns (u1, theta1, psi1, u2, theta2, psi2, phi2)
 (eight equations of rank seven; Gauss-Newton with a least-squares step, which also copes with the
-rank-deficient line contact of conjugate surfaces).  Transmission error, in the driven sense,
-TE = -(phi2 - phi2_0) - (z1/z2)(phi1 - phi1_0)  (seed 000, Eq. 1).
+rank-deficient line contact of conjugate surfaces).  Transmission error, in the driven sense (negative = gear lagging),
+TE = s (-(phi2 - phi2_0) - (z1/z2)(phi1 - phi1_0))  (seed 000, Eq. 1), s = :func:`drive_sign`: the pinion
+drives the gear away from the pinion flank, so the driving rotation of the pinion is -s phi1.
 Contact ellipse: gap = x^T (K1 + K2) x / 2 with K_i the curvature tensors (dn = K dr, convex > 0),
 semi-axes sqrt(2 delta / lambda) for the elastic approach delta (Litvin & Fuentes 2004, sec. 9.3).
 """
@@ -26,6 +27,7 @@ from .generation import _guess, solve_axial_points, surface_state
 from .machine import FlankCut, MemberCut
 
 __all__ = ["ContactError", "Assembly", "BevelPair", "TCAResult", "mesh_frames", "to_pitch_coords", "curvature_tensor",
+           "drive_sign",
            "tca", "ARCSEC"]
 
 ARCSEC = np.pi / (180.0 * 3600.0)
@@ -158,6 +160,17 @@ def _solve_psi(fc: FlankCut, u, th, psi, iters: int = 30):
     return psi
 
 
+def drive_sign(r2: np.ndarray, n2: np.ndarray) -> float:
+    """+1 or -1: the sense of gear rotation (about +z2) that moves the gear flank at the body-frame point
+    ``r2`` (normal ``n2``, out of the material) towards the pinion, sign(n2 . e_theta).
+
+    The pinion drives the gear the other way, so the TE in the driven sense (negative = gear lagging) is
+    ``drive_sign * (-(phi2 - phi2_0) - (z1/z2) phi1)``: on the flank pair whose pinion turns by -phi1 when
+    it drives, the sign flips (here the working flank, pinion concave, right-hand gear convex).
+    """
+    return float(np.sign(n2[..., 1] * r2[..., 0] - n2[..., 0] * r2[..., 1]))
+
+
 def curvature_tensor(fc: FlankCut, q: np.ndarray) -> np.ndarray:
     """Curvature tensors (3x3, in the work body frame, tangent-plane part) at parameters q (n, 3).
 
@@ -263,6 +276,14 @@ def tca(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = Assembly(
                            f"point at phi1 = 0 (residual {np.max(np.abs(residual(X, 0.0))):.2e}); contact is "
                            f"at an edge or absent: use the separation-field analysis, or check the settings "
                            f"and the assembly errors {asm}")
+    s1 = surface_state(fc1, *X[:3]); s2 = surface_state(fc2, *X[3:6])
+    for member, r in (("gear", s2.r_w), ("pinion", s1.r_w)):
+        if not _inside(bl, member, r):
+            L, Rn = to_pitch_coords(r, bl.member(member).pitch_angle)
+            raise ContactError(f"TCA ({pinion_side} pinion flank): the point of tangency at phi1 = 0 lies off the "
+                               f"{member} flank (L = {L:.3f} mm, Rn = {Rn:.3f} mm, outside the blank): contact "
+                               f"is at an edge; use the separation-field analysis "
+                               f"(geometry.bevel.separation.separation_tca), or check the assembly errors {asm}")
     cycle = 2 * np.pi / bl.pinion.z
     dphi = cycle / steps_per_cycle
     nmax = int(np.ceil(max_cycles * steps_per_cycle))
@@ -288,7 +309,8 @@ def tca(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = Assembly(
     Xs = np.array([rows[k][1] for k in keys])
     phi2 = Xs[:, 6]
     ratio = bl.pinion.z / bl.gear.z
-    te = -(phi2 - X[6]) - ratio * phi1
+    ref = surface_state(fc2, *X[3:6])
+    te = drive_sign(ref.r_w, ref.n_w) * (-(phi2 - X[6]) - ratio * phi1)
     s1 = surface_state(fc1, Xs[:, 0], Xs[:, 1], Xs[:, 2]); s2 = surface_state(fc2, Xs[:, 3], Xs[:, 4], Xs[:, 5])
     r_h = _rotz(s2.r_w, phi2) @ B2.T + O2
     L2, Rn2 = to_pitch_coords(s2.r_w, mb2.pitch_angle)
