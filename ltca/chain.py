@@ -26,12 +26,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+
 from ltca.budget import _known, _num
 from ltca.errors import CaseError
 
 __all__ = ["ChainElement", "Chain", "ChainEvaluation", "evaluate_chain", "ChainResult",
-           "load_chain_case", "run_chain", "pitch_deviation_bound", "worst_case_pitch_deviations",
-           "random_pitch_deviations", "RollRatioError", "roll_ratio_error"]
+           "load_chain_case", "run_chain", "pitch_deviation_bound", "RollRatioError", "roll_ratio_error"]
 
 DEG = np.pi / 180.0
 LINKS = ("input", "mesh", "shaft")
@@ -237,64 +237,6 @@ def pitch_deviation_bound(ev: ChainEvaluation) -> float:
     indexing step measured at the mean pitch radius, so one pitch lies within +/- half of it.
     """
     return 0.5 * ev.pitch_error_um * 1e-3
-
-
-def worst_case_pitch_deviations(teeth: int, bound: float, pattern: str = "alternating") -> np.ndarray:
-    """Worst-case single pitch deviations f_pt,k (mm) that close over one revolution.
-
-    Parameters
-    ----------
-    teeth : int
-        Workpiece teeth (>= 2).
-    bound : float
-        Largest |f_pt|, mm (e.g. :func:`pitch_deviation_bound`).
-    pattern : {"alternating", "half"}
-        "alternating": +b, -b, ... (largest tooth-to-tooth jump 2b; 0 on the last tooth if z is odd);
-        "half": +b on the first z//2 pitches, -b on the next z//2 (largest cumulative pitch error
-        z//2 b, once-per-revolution content).
-
-    Returns
-    -------
-    ndarray (teeth,)
-        Pitch deviations, mm; their sum is zero (the teeth close the circle).
-    """
-    if teeth < 2 or bound < 0:
-        raise ValueError(f"need teeth >= 2 and bound >= 0, got {teeth}, {bound}")
-    k = np.arange(teeth)
-    if pattern == "alternating":
-        dev = bound * np.where(k % 2 == 0, 1.0, -1.0)
-    elif pattern == "half":
-        dev = bound * np.where(k < teeth // 2, 1.0, -1.0)
-    else:
-        raise ValueError(f"pattern must be 'alternating' or 'half', got {pattern!r}")
-    if teeth % 2:
-        dev[-1] = 0.0
-    return dev
-
-
-def random_pitch_deviations(teeth: int, bound: float, seed: int, draws: int = 1) -> np.ndarray:
-    """Seeded random pitch deviations within +/- bound whose sum over a revolution is zero.
-
-    Each draw starts uniform in [-bound, bound] (numpy ``default_rng(seed)``); the closing error is
-    then spread evenly over the pitches that still have room, with clipping, until it vanishes.
-
-    Returns
-    -------
-    ndarray (draws, teeth)
-        Pitch deviations, mm; ``cumsum`` along axis 1 is the cumulative pitch error, 0 at the end.
-    """
-    if teeth < 2 or bound < 0 or draws < 1:
-        raise ValueError(f"need teeth >= 2, bound >= 0, draws >= 1, got {teeth}, {bound}, {draws}")
-    dev = np.random.default_rng(seed).uniform(-bound, bound, (draws, teeth))
-    for _ in range(100):
-        excess = dev.sum(axis=1, keepdims=True)
-        if np.all(np.abs(excess) <= 1e-15 * max(bound, 1e-300) * teeth):
-            break
-        room = np.where(excess > 0, dev > -bound, dev < bound)
-        dev = np.clip(dev - excess / np.maximum(room.sum(axis=1, keepdims=True), 1) * room,
-                      -bound, bound)
-    dev -= dev.mean(axis=1, keepdims=True)          # rounding residue, ~1e-16 of the bound
-    return dev
 
 
 @dataclass(frozen=True)

@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 from ltca.chain import (evaluate_chain, load_chain_case, pitch_deviation_bound,
-                        random_pitch_deviations, roll_ratio_error, run_chain,
-                        worst_case_pitch_deviations)
+                        roll_ratio_error, run_chain)
+from geometry.errors import random_pitch_deviations, worst_case_pitch_deviations
 from ltca.errors import CaseError
 
 CASE = "cases/chain_zftkk250.toml"

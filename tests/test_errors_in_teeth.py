@@ -55,6 +55,18 @@ def _pitch_error_mods():
     return Modifications(pitch_errors=tuple(sorted((int(k), v * 1e-3) for k, v in errs.items())))
 
 
+def test_pitch_error_case_follows_from_the_seed_002_indexing_chain():
+    from geometry.errors import tooth_positions, worst_case_pitch_deviations
+    from ltca.chain import evaluate_chain, load_chain_case, pitch_deviation_bound
+    indexing_z1 = next(c for c in load_chain_case(str(CASES / "chain_zftkk250.toml")) if "index" in c.name.lower()
+                       and c.name.lower().rstrip().endswith("z1"))
+    bound = pitch_deviation_bound(evaluate_chain(indexing_z1))
+    assert bound == pytest.approx(0.01032, abs=5e-6)          # seed 002: 20.64 um band -> +-10.32 um
+    expected = tooth_positions(worst_case_pitch_deviations(16, bound, "half"))
+    case = dict(_pitch_error_mods().pitch_errors)
+    assert np.allclose([case[k] for k in range(16)], expected, atol=6e-6)   # file rounds to 0.01 um
+
+
 def test_pitch_errors_over_a_revolution(fzg_lm, fzg_case):
     T = fzg_case.torques[0]
     lm = with_case(fzg_lm, pinion=dataclasses.replace(fzg_case.pinion, modifications=_pitch_error_mods()))
