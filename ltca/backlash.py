@@ -23,7 +23,7 @@ import numpy as np
 
 __all__ = ["BacklashCurves", "backlash_curves", "unloaded_from_loaded", "plot_backlash"]
 
-ARCSEC = np.pi / (180.0 * 3600.0)
+RAD_PER_ARCSEC = np.pi / (180.0 * 3600.0)
 
 
 @dataclass(frozen=True)
@@ -108,14 +108,14 @@ def plot_backlash(curves: BacklashCurves, path: str, title: str = "") -> None:
     import matplotlib.pyplot as plt
     deg = np.degrees(curves.roll_angle)
     fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(6.4, 5.6))
-    ax1.plot(deg, curves.te_drive / ARCSEC, "C0-", label="drive, unloaded")
-    ax1.plot(deg, curves.te_coast / ARCSEC, "C1-", label="coast, unloaded")
-    ax1.plot(deg, curves.loaded_drive / ARCSEC, "C0--", label="drive, loaded (Eq. 20)")
-    ax1.plot(deg, curves.loaded_coast / ARCSEC, "C1--", label="coast, loaded (Eq. 21)")
+    ax1.plot(deg, curves.te_drive / RAD_PER_ARCSEC, "C0-", label="drive, unloaded")
+    ax1.plot(deg, curves.te_coast / RAD_PER_ARCSEC, "C1-", label="coast, unloaded")
+    ax1.plot(deg, curves.loaded_drive / RAD_PER_ARCSEC, "C0--", label="drive, loaded (Eq. 20)")
+    ax1.plot(deg, curves.loaded_coast / RAD_PER_ARCSEC, "C1--", label="coast, loaded (Eq. 21)")
     ax1.set_ylabel("TE / arcsec")
     ax1.legend(fontsize=7)
-    ax2.plot(deg, curves.backlash / ARCSEC, "k-", label="backlash = coast - drive")
-    ax2.plot(deg, curves.loaded_hysteresis / ARCSEC, "k:", label="loaded separation")
+    ax2.plot(deg, curves.backlash / RAD_PER_ARCSEC, "k-", label="backlash = coast - drive")
+    ax2.plot(deg, curves.loaded_hysteresis / RAD_PER_ARCSEC, "k:", label="loaded separation")
     ax2.set_xlabel("roll angle / deg")
     ax2.set_ylabel("backlash / arcsec")
     ax2.legend(fontsize=7)

@@ -18,7 +18,7 @@ from geometry.bevel.machine import MemberCut
 from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.generation import generate_member, surface_state
 from geometry.bevel.separation import separation_tca
-from geometry.bevel.tca import ARCSEC, BevelPair, tca, to_pitch_coords
+from geometry.bevel.tca import RAD_PER_ARCSEC, BevelPair, tca, to_pitch_coords
 from geometry.bevel.undercut import undercut_check
 
 from .errors import CaseError
@@ -82,7 +82,7 @@ def load_bevel_case(case_path: str | Path) -> dict:
         if not isinstance(t, dict):
             raise CaseError(f"bevel.{name}", t, "a required table", f)
         t = _table(t, _FLANK, f"bevel.{name}", f)
-        targets[side] = FlankTarget(np.deg2rad(t["path_angle_deg"]), t["te_magnitude_arcsec"] * ARCSEC,
+        targets[side] = FlankTarget(np.deg2rad(t["path_angle_deg"]), t["te_magnitude_arcsec"] * RAD_PER_ARCSEC,
                                     float(t["ellipse_major_mm"]))
     try:
         basic = BevelBasicData(z1=b["pinion_teeth"], z2=b["gear_teeth"], module=float(b["module_mm"]),
@@ -154,11 +154,11 @@ def run_bevel_tca(case_path: str, out: str | None = None) -> dict:
         runs[label] = (r, sep)
         m = cycle_metrics(r, bl)
         tg = case["targets"][side]
-        m["targets"] = dict(path_angle_deg=float(np.rad2deg(tg.eta2)), te_magnitude_arcsec=tg.te_magnitude / ARCSEC,
+        m["targets"] = dict(path_angle_deg=float(np.rad2deg(tg.eta2)), te_magnitude_arcsec=tg.te_magnitude / RAD_PER_ARCSEC,
                             ellipse_major_mm=tg.major_axis)
         m["separation_te_range_arcsec"] = float(np.ptp(sep.te_arcsec))
         m["separation_vs_continuous_te_arcsec"] = float(np.max(np.abs(sep.te - np.interp(sep.phi1, r.phi1_3,
-                                                                                          r.te_3))) / ARCSEC)
+                                                                                          r.te_3))) / RAD_PER_ARCSEC)
         m["ease_off_max_um"] = float(np.nanmax(sep.ease_off) * 1e3)
         flanks[label] = m
         d = infos[side]["design"]
@@ -237,7 +237,7 @@ def plot_bevel(pair: BevelPair, runs: dict, out: Path, title: str) -> list[str]:
     fig, ax = plt.subplots(figsize=(8, 4))
     for (label, (r, sep)), c in zip(runs.items(), ("tab:blue", "tab:orange")):
         cyc = 1.0 / sep.cycle
-        ax.plot(r.phi1_3 * cyc, r.te_3 / ARCSEC, "-", color=c, lw=1.8, label=f"{label}: continuous TCA")
+        ax.plot(r.phi1_3 * cyc, r.te_3 / RAD_PER_ARCSEC, "-", color=c, lw=1.8, label=f"{label}: continuous TCA")
         ax.plot(sep.phi1 * cyc, sep.te_arcsec, "o", color=c, ms=3, mfc="none", label=f"{label}: separation field")
     for x in (-1.5, -0.5, 0.5, 1.5):
         ax.axvline(x, color="0.7", lw=0.6, ls=":")

@@ -399,7 +399,7 @@ def backlash_from_pair(spec: dict, result: BudgetResult) -> list:
     from .case import load_case
     from .model import build_model
     from .run import cycle_rolls
-    from .tca import ARCSEC, double_flank_tca
+    from .tca import ARCSEC_PER_RAD, double_flank_tca
     case = load_case(spec["pair_case"])
     case = dataclasses.replace(
         case, pinion=dataclasses.replace(case.pinion, thickness_allowance=spec["allowance"][0]),
@@ -408,7 +408,7 @@ def backlash_from_pair(spec: dict, result: BudgetResult) -> list:
     cycles = spec["cycles"] or case.pinion.teeth
     roll = cycle_rolls(spec["n"], case.pinion.teeth, cycles)
     drive, coast = double_flank_tca(model, roll)
-    return [backlash_curves(roll, drive / ARCSEC, coast / ARCSEC, float(d)) for d in result.total]
+    return [backlash_curves(roll, drive / ARCSEC_PER_RAD, coast / ARCSEC_PER_RAD, float(d)) for d in result.total]
 
 
 def run_budget(case_path: str, out_dir: str | None) -> BudgetResult:

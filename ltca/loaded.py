@@ -19,7 +19,7 @@ from geometry.cylindrical import flank_point_normal
 
 from .errors import ConvergenceError
 from .model import PairModel
-from .tca import ARCSEC, first_contact, flank_gaps, unloaded_tca
+from .tca import ARCSEC_PER_RAD, first_contact, flank_gaps, unloaded_tca
 
 __all__ = ["Fidelity", "LoadedModel", "PositionResult", "prepare", "solve_position", "hertz_line", "weights_of",
            "te_arcsec"]
@@ -353,4 +353,4 @@ def weights_of(lm: LoadedModel, res: PositionResult):
 
 def te_arcsec(lm: LoadedModel, theta: np.ndarray) -> np.ndarray:
     """Pinion rotation (rad) -> transmission error of the gear (arcsec, positive = lag)."""
-    return np.asarray(theta) / lm.model.pair.ratio * ARCSEC
+    return np.asarray(theta) / lm.model.pair.ratio * ARCSEC_PER_RAD

@@ -15,7 +15,7 @@ from geometry.pair import rotation_z
 from .loaded import Fidelity, LoadedModel, PositionResult, prepare, solve_position, weights_of
 from .model import build_model
 from .results import position_dataset, summary, write_json
-from .tca import ARCSEC, unloaded_tca
+from .tca import ARCSEC_PER_RAD, unloaded_tca
 
 __all__ = ["run_case", "run_tca", "cycle_rolls", "analyse"]
 
@@ -56,7 +56,7 @@ def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = 
         if log is not None:
             with open(log, "a") as fh:
                 fh.write(json.dumps({"torque_nm": torque * 1e-3, "roll_deg": float(np.degrees(warm.roll)),
-                                     "te_loaded_arcsec": warm.theta / lm.model.pair.ratio * ARCSEC,
+                                     "te_loaded_arcsec": warm.theta / lm.model.pair.ratio * ARCSEC_PER_RAD,
                                      "max_pressure_mpa": warm.max_pressure,
                                      "pair_load_n": {str(k): v for k, v in warm.pair_load.items()},
                                      "root_stress_mpa": {"pinion": warm.root1, "gear": warm.root2}}) + "\n")

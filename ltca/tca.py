@@ -17,10 +17,10 @@ from geometry.modification import modification_depth
 
 from .model import PairModel
 
-__all__ = ["FlankGaps", "flank_gaps", "TCAResult", "unloaded_tca", "first_contact", "contact_ratio", "ARCSEC",
+__all__ = ["FlankGaps", "flank_gaps", "TCAResult", "unloaded_tca", "first_contact", "contact_ratio", "ARCSEC_PER_RAD",
            "split_roll", "double_flank_tca"]
 
-ARCSEC = 180 * 3600 / np.pi   # arcsec per rad
+ARCSEC_PER_RAD = 180 * 3600 / np.pi   # arcsec per rad
 
 
 @dataclass(frozen=True)
@@ -169,7 +169,7 @@ def unloaded_tca(model: PairModel, roll: np.ndarray, teeth=range(-3, 4), ns: int
     for i, ps in enumerate(roll):
         theta0[i], (ct[i], cr[i], cz[i]), ratio[i] = first_contact(model, model.phi_pitch - ps, teeth, ns, nz, True)
     min_gap = (ratio - theta0[:, None]) * model.pinion.r_base
-    te = theta0 / model.pair.ratio * ARCSEC
+    te = theta0 / model.pair.ratio * ARCSEC_PER_RAD
     ea, eb = contact_ratio(model)
     return TCAResult(roll, theta0, te, ct, cr, cz, min_gap, teeth, ea, eb)
 
@@ -193,5 +193,5 @@ def double_flank_tca(model: PairModel, roll: np.ndarray, teeth=range(-2, 3)) -> 
         phi1 = model.phi_pitch - rc
         drive[i] = -first_contact(model, phi1, teeth, ns=160, nz=5, side=+1, cycle=int(n))
         coast[i] = first_contact(model, phi1, teeth, ns=160, nz=5, side=-1, cycle=int(n))
-    scale = ARCSEC / model.pair.ratio
+    scale = ARCSEC_PER_RAD / model.pair.ratio
     return drive * scale, coast * scale

@@ -10,7 +10,7 @@ from geometry.bevel.blank import design_blank
 from geometry.bevel.design import synthesize_pinion
 from geometry.bevel.generation import standard_gear_cut
 from geometry.bevel.separation import separation_tca
-from geometry.bevel.tca import ARCSEC, Assembly, BevelPair, ContactError, tca
+from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca
 from ltca.bevel import load_bevel_case
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.toml"
@@ -35,7 +35,7 @@ def test_separation_te_and_zone_agree_with_continuous_tca(pair, side):
     # three cycles, same positions: TE of the envelope of the tooth pairs within 0.5 arcsec (measured 0.002)
     assert s.phi1[0] == pytest.approx(-1.5 * r.cycle) and s.phi1[-1] == pytest.approx(1.5 * r.cycle)
     te_c = np.interp(s.phi1, r.phi1_3, r.te_3)
-    assert np.max(np.abs(s.te - te_c)) < 0.5 * ARCSEC
+    assert np.max(np.abs(s.te - te_c)) < 0.5 * RAD_PER_ARCSEC
     assert np.ptp(s.te_arcsec) > 8.0                              # a real parabolic TE, not a trivial zero
     assert set(s.where) == {"interior"}
     # the contact zone (gap < 0.00632 mm) contains the continuous path between the transfer points (the

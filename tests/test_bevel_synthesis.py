@@ -15,12 +15,12 @@ from geometry.bevel.design import control_point_design, cycle_metrics, synthesiz
 from geometry.bevel.generation import generate_flank, standard_gear_cut
 from geometry.bevel.machine import MemberCut
 from geometry.bevel.synthesis import FlankTarget, generated_curvature, local_synthesis, te_curvature
-from geometry.bevel.tca import ARCSEC, BevelPair, curvature_tensor, tca
+from geometry.bevel.tca import RAD_PER_ARCSEC, BevelPair, curvature_tensor, tca
 
 # seed 000 sec. 4: working flank (pinion concave) 22 deg / 8.25 arcsec, coast 14 deg / 11.25 arcsec.
 # Our eta2 is signed (positive towards the tooth top going to the heel): the coast path runs the other way.
-TARGETS = {"concave": FlankTarget(np.deg2rad(22.0), 8.25 * ARCSEC, 6.0),
-           "convex": FlankTarget(np.deg2rad(-14.0), 11.25 * ARCSEC, 6.0)}
+TARGETS = {"concave": FlankTarget(np.deg2rad(22.0), 8.25 * RAD_PER_ARCSEC, 6.0),
+           "convex": FlankTarget(np.deg2rad(-14.0), 11.25 * RAD_PER_ARCSEC, 6.0)}
 
 
 @pytest.fixture(scope="module")
@@ -83,7 +83,7 @@ def test_three_control_points_parabolic_te_straight_path(setup, designs, side):
     tg = TARGETS[side]
     m = designs[1][side]["design"]["metrics"]
     assert m["te_r2"] > 0.99
-    assert m["te_amplitude_arcsec"] == pytest.approx(tg.te_magnitude / ARCSEC, rel=0.05)
+    assert m["te_amplitude_arcsec"] == pytest.approx(tg.te_magnitude / RAD_PER_ARCSEC, rel=0.05)
     assert abs(m["path_angle_deg"] - np.rad2deg(tg.eta2)) < 1.0
     assert m["path_straightness_mm"] < 0.25
     assert m["ellipse_major_mm"] == pytest.approx(tg.major_axis, rel=0.10)
@@ -93,7 +93,7 @@ def test_three_control_points_parabolic_te_straight_path(setup, designs, side):
     fc0, _ = local_synthesis(bl, g, side, tg)
     m0 = cycle_metrics(tca(_pair(bl, g, fc0), side, steps_per_cycle=8, max_cycles=0.5), bl)
     assert abs(m0["te_transfer_arcsec"][0] - m0["te_transfer_arcsec"][1]) > 1.0
-    assert max(abs(v + tg.te_magnitude / ARCSEC) for v in d["metrics"]["te_transfer_arcsec"]) < 0.01
+    assert max(abs(v + tg.te_magnitude / RAD_PER_ARCSEC) for v in d["metrics"]["te_transfer_arcsec"]) < 0.01
 
 
 @pytest.mark.parametrize("side", ["concave", "convex"])
@@ -116,10 +116,10 @@ def test_synthesis_speed(designs):
 def test_bad_targets_name_the_parameter(setup):
     bl, g = setup
     with pytest.raises(ValueError, match="eta2"):
-        FlankTarget(np.deg2rad(85.0), 8 * ARCSEC, 6.0)
+        FlankTarget(np.deg2rad(85.0), 8 * RAD_PER_ARCSEC, 6.0)
     with pytest.raises(ValueError, match="te_magnitude"):
         FlankTarget(0.3, -1.0, 6.0)
     with pytest.raises(ValueError, match="major_axis"):
-        local_synthesis(bl, g, "convex", FlankTarget(np.deg2rad(14.0), 11.25 * ARCSEC, 6.0))
+        local_synthesis(bl, g, "convex", FlankTarget(np.deg2rad(14.0), 11.25 * RAD_PER_ARCSEC, 6.0))
     with pytest.raises(ValueError, match="pinion_side"):
         local_synthesis(bl, g, "left", TARGETS["concave"])

@@ -7,7 +7,7 @@ import pytest
 from geometry.bevel.blank import BevelBasicData, design_blank
 from geometry.bevel.generation import normal_thickness
 from geometry.bevel.machine import conjugate_pinion_settings, gear_settings
-from geometry.bevel.tca import ARCSEC, ContactError, Assembly, BevelPair, mesh_frames, tca
+from geometry.bevel.tca import RAD_PER_ARCSEC, ContactError, Assembly, BevelPair, mesh_frames, tca
 
 
 @pytest.fixture(scope="module")
@@ -25,7 +25,7 @@ def test_conjugate_pair_has_zero_te_and_line_contact(oracle, side):
     print(f"TCA {dt:.2f} s (target 2 s; measured, not asserted)")
     assert r.contact_ratio > 1.0                           # the path covers more than one cycle
     assert np.max(np.abs(r.te_arcsec)) < 0.01
-    te3 = r.te_3 / ARCSEC
+    te3 = r.te_3 / RAD_PER_ARCSEC
     assert np.all(np.isfinite(te3)) and np.max(np.abs(te3)) < 0.01       # three cycles, no gap
     # gear turns at the tooth ratio everywhere along the path
     assert np.allclose(np.diff(-r.phi2) / np.diff(r.phi1), oracle.blank.pinion.z / oracle.blank.gear.z, rtol=1e-8)

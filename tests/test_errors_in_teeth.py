@@ -15,7 +15,7 @@ from conftest import CASES, with_case
 from ltca.case import Modifications, load_case
 from ltca.model import build_model, working_centre_distance
 from ltca.run import analyse, cycle_rolls
-from ltca.tca import ARCSEC, double_flank_tca
+from ltca.tca import ARCSEC_PER_RAD, double_flank_tca
 
 
 def test_backlash_of_thinned_teeth_matches_closed_form():
@@ -31,7 +31,7 @@ def test_backlash_of_thinned_teeth_matches_closed_form():
     a0 = working_centre_distance(case)
     pair = model.pair
     r_w2 = pair.a - pair.r_w1
-    expected = (A1 / 36.0 * 16 / 24 + A2 / 54.0 - 2 * (a0 - pair.a) * np.tan(pair.alpha_w) / r_w2) * ARCSEC
+    expected = (A1 / 36.0 * 16 / 24 + A2 / 54.0 - 2 * (a0 - pair.a) * np.tan(pair.alpha_w) / r_w2) * ARCSEC_PER_RAD
     assert np.ptp(backlash) < 0.01
     assert backlash.mean() == pytest.approx(expected, abs=0.05)
     assert np.all(drive <= 1e-3) and np.all(coast > 0)
@@ -46,7 +46,7 @@ def test_budget_case_writes_backlash_curves(tmp_path):
     assert data["backlash_arcsec"] == pytest.approx(228.94, abs=0.05)
     last = f"{result.torque[-1]:g}Nm"
     shift = data[f"loaded_coast_{last}"] - data[f"loaded_drive_{last}"] - data["backlash_arcsec"]
-    assert shift == pytest.approx(2 * result.total[-1] * ARCSEC, rel=1e-6)      # Eq. 20-21
+    assert shift == pytest.approx(2 * result.total[-1] * ARCSEC_PER_RAD, rel=1e-6)      # Eq. 20-21
 
 
 def _pitch_error_mods():
@@ -76,13 +76,13 @@ def test_pitch_errors_over_a_revolution(fzg_lm, fzg_case):
     ref = analyse(fzg_lm, rolls, T)
     for r in res:
         assert np.isfinite(r.theta) and r.torque_residual < 1e-6 and np.all(np.isfinite(r.pressure))
-    te = np.array([r.theta for r in res]) / lm.model.pair.ratio * ARCSEC
-    te0 = np.array([r.theta for r in ref]) / lm.model.pair.ratio * ARCSEC
+    te = np.array([r.theta for r in res]) / lm.model.pair.ratio * ARCSEC_PER_RAD
+    te0 = np.array([r.theta for r in ref]) / lm.model.pair.ratio * ARCSEC_PER_RAD
     amp = np.abs(np.fft.rfft(te)) * 2 / len(te)
     amp0 = np.abs(np.fft.rfft(te0)) * 2 / len(te0)
     # once per revolution: the cumulative pitch error is a triangle of +-41.28 um on the pinion base
     # circle (r_b1 = 33.83 mm) -> +-167.6 arcsec of the gear; its first harmonic is 8/pi^2 of that
-    assert amp[1] == pytest.approx(8 / np.pi ** 2 * 41.28e-3 / 33.8289 * 16 / 24 * ARCSEC, rel=0.15)
+    assert amp[1] == pytest.approx(8 / np.pi ** 2 * 41.28e-3 / 33.8289 * 16 / 24 * ARCSEC_PER_RAD, rel=0.15)
     assert amp0[1] < 0.01 * amp[1]
     assert amp[z1] > 1.0 and amp0[z1] > 1.0          # tooth-mesh content in both
 

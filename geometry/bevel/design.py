@@ -32,7 +32,7 @@ import numpy as np
 from .blank import BevelBlank
 from .machine import FlankCut, MemberCut
 from .synthesis import FlankTarget, local_synthesis
-from .tca import ARCSEC, Assembly, BevelPair, ContactError, TCAResult, tca
+from .tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, TCAResult, tca
 
 __all__ = ["cycle_metrics", "control_point_design", "synthesize_pinion"]
 
@@ -62,8 +62,8 @@ def cycle_metrics(r: TCAResult, blank: BevelBlank) -> dict:
     _, _, vt = np.linalg.svd(X, full_matrices=False)
     d = vt[0] if vt[0, 0] >= 0 else -vt[0]
     i0 = int(np.argmin(np.abs(r.phi1)))
-    return dict(te_amplitude_arcsec=float(-c[0] * half ** 2 / ARCSEC),
-                te_transfer_arcsec=[float(te[0] / ARCSEC), float(te[-1] / ARCSEC)],
+    return dict(te_amplitude_arcsec=float(-c[0] * half ** 2 / RAD_PER_ARCSEC),
+                te_transfer_arcsec=[float(te[0] / RAD_PER_ARCSEC), float(te[-1] / RAD_PER_ARCSEC)],
                 te_r2=float(r2),
                 path_angle_deg=float(np.rad2deg(np.arctan2(d[1], d[0]) - blank.gear.dedendum_angle)),
                 path_straightness_mm=float(np.max(np.abs(X @ vt[1]))),
@@ -117,7 +117,7 @@ def control_point_design(blank: BevelBlank, gear: MemberCut, pinion_side: str, t
             raise ContactError(f"{pinion_side} pinion flank: the contact path leaves the flank before the "
                                f"transfer points ({r.stops}); reduce the path length (te_magnitude, eta2) "
                                f"or the ellipse axis")
-        F = (np.array([r.te[0], r.te[-1]]) + target.te_magnitude) / ARCSEC
+        F = (np.array([r.te[0], r.te[-1]]) + target.te_magnitude) / RAD_PER_ARCSEC
         return fc, info, r, F
 
     fixed = blank_offset is not None

@@ -30,7 +30,7 @@ from scipy.interpolate import RegularGridInterpolator
 from .blank import BevelBlank
 from .generation import generate_flank, solve_axial_points, surface_state
 from .machine import FlankCut
-from .tca import ARCSEC, Assembly, BevelPair, mesh_frames, to_pitch_coords
+from .tca import RAD_PER_ARCSEC, Assembly, BevelPair, mesh_frames, to_pitch_coords
 
 __all__ = ["SeparationResult", "separation_tca", "EDGES"]
 
@@ -169,7 +169,7 @@ class SeparationResult:
 
     @property
     def te_arcsec(self) -> np.ndarray:
-        return self.te / ARCSEC
+        return self.te / RAD_PER_ARCSEC
 
     def gear_zone(self) -> np.ndarray:
         """(m, nu2, nv2) gear grid points inside the contact zone (gap below ``delta``) at each position."""

@@ -33,7 +33,7 @@ from .blank import BevelBlank
 from .cutter import HeadCutter
 from .generation import MeshingError, _guess, solve_axial_points, surface_state
 from .machine import FlankCut, MachineSettings, MemberCut, roll
-from .tca import ARCSEC, drive_sign, mesh_frames
+from .tca import RAD_PER_ARCSEC, drive_sign, mesh_frames
 
 __all__ = ["FlankTarget", "MeanContact", "second_order", "generated_curvature", "mean_contact",
            "path_tangent", "pinion_curvature", "local_synthesis", "te_curvature"]
@@ -64,7 +64,7 @@ class FlankTarget:
     def __post_init__(self) -> None:
         if not abs(self.eta2) < np.deg2rad(80.0):
             raise ValueError(f"eta2 = {self.eta2!r} is outside the allowed range (-80, 80) deg")
-        if not (np.isfinite(self.te_magnitude) and 0.0 < self.te_magnitude < 1000 * ARCSEC):
+        if not (np.isfinite(self.te_magnitude) and 0.0 < self.te_magnitude < 1000 * RAD_PER_ARCSEC):
             raise ValueError(f"te_magnitude = {self.te_magnitude!r} is outside the allowed range (0, 1000] arcsec")
         if not (np.isfinite(self.major_axis) and self.major_axis > 0):
             raise ValueError(f"major_axis = {self.major_axis!r} is outside the allowed range (0, inf) mm")

@@ -28,9 +28,9 @@ from .machine import FlankCut, MemberCut
 
 __all__ = ["ContactError", "Assembly", "BevelPair", "TCAResult", "mesh_frames", "to_pitch_coords", "curvature_tensor",
            "drive_sign",
-           "tca", "ARCSEC"]
+           "tca", "RAD_PER_ARCSEC"]
 
-ARCSEC = np.pi / (180.0 * 3600.0)
+RAD_PER_ARCSEC = np.pi / (180.0 * 3600.0)
 
 
 class ContactError(RuntimeError):
@@ -98,7 +98,7 @@ class TCAResult:
 
     @property
     def te_arcsec(self) -> np.ndarray:
-        return self.te / ARCSEC
+        return self.te / RAD_PER_ARCSEC
 
     @property
     def contact_ratio(self) -> float:
