@@ -39,8 +39,16 @@ def _cmd_convergence(a: argparse.Namespace) -> int:
 
 
 def _cmd_validate(a: argparse.Namespace) -> int:
+    if a.reference == "calculix":
+        from fem.export import CcxNotFound
+        from .calculix import run_calculix_validation
+        try:
+            return run_calculix_validation(a.case, a.positions, a.out, refine=a.refine, progress=not a.quiet)
+        except CcxNotFound as exc:
+            print(f"ltca validate: {exc}", file=sys.stderr)
+            return 2
     from .validate import run_validate
-    return run_validate(out=a.out, reference=a.reference, progress=not a.quiet)
+    return run_validate(out=a.out, progress=not a.quiet)
 
 
 def _cmd_bench(a: argparse.Namespace) -> int:
@@ -109,7 +117,12 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Runs the validation cases and prints measured vs reference, error and time.")
     v.add_argument("--out", default="out/validate")
     v.add_argument("--reference", choices=["analytic", "calculix"], default="analytic",
-                   help="analytic references and tables (default) or the CalculiX cross-check")
+                   help="analytic references and tables (default) or the CalculiX cross-check (slow: "
+                        "10-30 min per position on 2 cores)")
+    v.add_argument("--case", default="cases/fzg_c14.toml", help="case for --reference calculix")
+    v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
+                   help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9)")
+    v.add_argument("--refine", type=int, default=1, help="CalculiX contact-band refinements (convergence check)")
     v.add_argument("--quiet", action="store_true")
     v.set_defaults(func=_cmd_validate)
 

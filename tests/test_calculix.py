@@ -1,0 +1,104 @@
+"""CalculiX cross-check (issue 4): deck writer and readers without ccx; one position against ccx (slow)."""
+from __future__ import annotations
+
+import shutil
+
+import numpy as np
+import pytest
+
+from fem.export import (CCX_INSTALL, CcxDeck, CcxNotFound, ContactLine, ContactPairSpec, DeckBody, _face_numbers,
+                        ccx_path, facets_near_lines, write_deck)
+from fem.mesh import SegmentMesh
+
+needs_ccx = pytest.mark.skipif(shutil.which("ccx") is None, reason=f"CalculiX missing: {CCX_INSTALL}")
+
+
+def _two_tets():
+    """Two tetrahedra sharing face (1, 2, 3); P2 mid-edge nodes appended in meshio order."""
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1.0]])
+    tets4 = np.array([[0, 1, 2, 3], [1, 4, 2, 3]])
+    edges = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
+    nodes, mid, tets = list(v), {}, []
+    for t in tets4:
+        row = list(t)
+        for a, b in edges:
+            key = tuple(sorted((t[a], t[b])))
+            if key not in mid:
+                mid[key] = len(nodes)
+                nodes.append(0.5 * (v[t[a]] + v[t[b]]))
+            row.append(mid[key])
+        tets.append(row)
+    return np.array(nodes), np.array(tets)
+
+
+def test_face_numbers_follow_calculix_c3d10():
+    nodes, tets = _two_tets()
+    # S1 = 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1 (1-based vertices of element 0)
+    tri = np.array([[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]])
+    el, face = _face_numbers(tets, tri, len(nodes))
+    assert el.tolist() == [0, 0, 0, 0]
+    assert face.tolist() == [1, 2, 3, 4]
+    with pytest.raises(ValueError):
+        _face_numbers(tets, np.array([[0, 1, 4]]), len(nodes))
+
+
+def test_facets_near_lines_selects_the_band():
+    nodes, tets = _two_tets()
+    mesh = SegmentMesh(nodes, tets, {"f": np.array([[0, 1, 2, 5, 6, 7], [1, 4, 3, 0, 0, 0]])}, "x")
+    line = ContactLine(np.array([0.0, 0.0, 0.0]), np.array([0.5, 0.0, 0.0]), np.array([0.0, 0.0, 1.0]))
+    near = facets_near_lines(mesh, ("f",), [line], 0.5)
+    assert len(near) == 1 and near[0, 0] == 0
+
+
+def test_deck_has_rigid_body_contact_and_moment(tmp_path):
+    nodes, tets = _two_tets()
+    tri = np.array([[0, 1, 2, 4, 5, 6]])
+    mesh = SegmentMesh(nodes, tets, {"bore": tri, "flank": tri}, "x")
+    frame = np.eye(4)
+    frame[:3, 3] = [0, 10, 0]
+    deck = CcxDeck(young=206000.0, poisson=0.3, fixed=("gear", "bore"), driven=("pinion", "bore"), moment=-2e5,
+                   pairs=(ContactPairSpec("P0", ("pinion", ("flank",)), ("gear", ("flank",))),), penalty=1e7)
+    ids = write_deck(tmp_path / "job.inp", [DeckBody("pinion", mesh, np.eye(4)), DeckBody("gear", mesh, frame)], deck)
+    text = (tmp_path / "job.inp").read_text()
+    n = len(nodes)
+    assert ids["ref"] == 2 * n + 1 and ids["rot"] == 2 * n + 2
+    assert f"*RIGID BODY, NSET=NRIGID, REF NODE={2 * n + 1}, ROT NODE={2 * n + 2}" in text
+    assert f"{2 * n + 2}, 3, -200000" in text and f"{2 * n + 2}, 1, 2" in text
+    assert "TYPE=SURFACE TO SURFACE" in text and "SP0, MP0" in text
+    assert f"{n + 1}, 0, 10, 0" in text           # gear node 1 placed by its frame
+    assert "3, S1" in text                          # gear element 3 (= its first), face 1-2-3
+
+
+def test_missing_ccx_names_the_install_command(monkeypatch):
+    monkeypatch.setattr(shutil, "which", lambda name: None)
+    with pytest.raises(CcxNotFound, match="apt-get install -y calculix-ccx"):
+        ccx_path()
+
+
+def test_bad_positions_are_case_errors(tmp_path):
+    if shutil.which("ccx") is None:
+        pytest.skip(f"CalculiX missing: {CCX_INSTALL}")
+    from ltca.calculix import run_calculix_validation
+    from ltca.errors import CaseError
+    from conftest import CASES
+    with pytest.raises(CaseError, match="positions"):
+        run_calculix_validation(str(CASES / "fzg_c14.toml"), [40.0], str(tmp_path), progress=False)
+
+
+@pytest.mark.calculix
+@pytest.mark.slow
+@needs_ccx
+def test_pitch_point_against_calculix(fzg_lm, tmp_path):
+    """FZG C14, 200 N m, pitch point at CalculiX level 0 (contact band b/2, ~230k dofs, ~13 min on 2 cores).
+
+    Level 0 is the coarsest rung of the CalculiX ladder, so the bounds are wider than the issue's (which
+    apply to the converged level): measured on this machine TE -3.2 %, fitted peak -3.5 %."""
+    from ltca.calculix import ccx_ladder, solve_ccx, solve_ours
+    torque = fzg_lm.model.case.torques[0]
+    ours, _ = solve_ours(fzg_lm, 0.0, torque)
+    st = ccx_ladder(fzg_lm.b_nom, fzg_lm.model.case.module, refine=0)[0]
+    ccx = solve_ccx(fzg_lm, 0.0, torque, st, tmp_path, say=lambda m: None)
+    assert abs(ours.te / ccx.te - 1) < 0.05
+    assert abs(ccx.share(fzg_lm.teeth1)[0] - 1.0) < 0.03
+    assert abs(sum(ccx.pair_load.values()) * fzg_lm.model.pinion.r_base / torque - 1) < 0.02
+    assert abs(ours.max_pressure / ccx.max_pressure - 1) < 0.08
