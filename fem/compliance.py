@@ -21,22 +21,12 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from geometry.cylindrical import helical_flank
+from geometry.cylindrical import arc_length, helical_flank
 from .elastic import assemble_stiffness, interpolation_matrix, patch_loads, stress_matrix
 from .mesh import SegmentSpec, build_segment
 from .solver import factorize
 
-__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "arc_length", "radius_of_arc"]
-
-
-def arc_length(r: np.ndarray, r_base: float) -> np.ndarray:
-    """Involute arc length from the base circle, s = (r^2 - r_b^2) / (2 r_b) (mm)."""
-    return (np.asarray(r, float) ** 2 - r_base ** 2) / (2.0 * r_base)
-
-
-def radius_of_arc(s: np.ndarray, r_base: float) -> np.ndarray:
-    """Inverse of :func:`arc_length`."""
-    return np.sqrt(r_base ** 2 + 2.0 * r_base * np.asarray(s, float))
+__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance"]
 
 
 @dataclass(frozen=True)

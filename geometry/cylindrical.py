@@ -22,7 +22,7 @@ import numpy as np
 from .flank import Flank
 from .involute import ToothProfile
 
-__all__ = ["helical_flank", "flank_point_normal", "flank_curvatures"]
+__all__ = ["helical_flank", "flank_point_normal", "flank_curvatures", "arc_length", "radius_of_arc"]
 
 
 def _check_side(side):
@@ -136,3 +136,13 @@ def helical_flank(profile: ToothProfile, side: int, face_width: float, nu: int, 
                  side="right" if side == 1 else "left", tooth=int(tooth), u_name="r", v_name="z",
                  meta={"kind": "involute helicoid", "internal": profile.internal, "beta": profile.beta,
                        "r_base": profile.r_base, "beta_b": profile.beta_b})
+
+
+def arc_length(r: np.ndarray, r_base: float) -> np.ndarray:
+    """Involute arc length from the base circle, s = (r^2 - r_b^2) / (2 r_b) (mm)."""
+    return (np.asarray(r, float) ** 2 - r_base ** 2) / (2.0 * r_base)
+
+
+def radius_of_arc(s: np.ndarray, r_base: float) -> np.ndarray:
+    """Inverse of :func:`arc_length`."""
+    return np.sqrt(r_base ** 2 + 2.0 * r_base * np.asarray(s, float))

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fem.compliance import arc_length
+from geometry.cylindrical import arc_length
 from fem.export import (CcxDeck, ContactLine, ContactPairSpec, DeckBody, build_refined_segment, facets_near_lines,
                         read_results, run_ccx, write_deck)
 from fem.mesh import SegmentSpec

@@ -13,9 +13,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fem.compliance import BodyCompliance, ComplianceSpec, arc_length, body_compliance
+from fem.compliance import BodyCompliance, ComplianceSpec, body_compliance
 from fem.contact import ContactNotConverged, solve_contact
-from geometry.cylindrical import flank_point_normal
+from geometry.cylindrical import arc_length, flank_point_normal
 
 from .errors import ConvergenceError
 from .model import PairModel

@@ -20,7 +20,7 @@ def pressure_on_lattice(lm: LoadedModel, res: PositionResult) -> tuple[np.ndarra
     """Pressure of one position on the fixed pinion-flank lattice, (tooth, profile, face) in MPa.
 
     Returns the field and the lattice's roll angles (deg) and axial positions (mm)."""
-    from fem.compliance import arc_length
+    from geometry.cylindrical import arc_length
     model, fid = lm.model, lm.fid
     rb = model.pinion.r_base
     s_lo, s_hi = (arc_length(r, rb) for r in model.pinion_range())

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.compliance import arc_length, radius_of_arc
+from geometry.cylindrical import arc_length, radius_of_arc
 from geometry.cylindrical import flank_point_normal
 from geometry.modification import modification_depth
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from conftest import with_case
-from fem.compliance import arc_length
+from geometry.cylindrical import arc_length
 from ltca.case import Modifications
 from ltca.loaded import hertz_line, solve_position
 from ltca.run import analyse, cycle_rolls
