@@ -520,7 +520,7 @@ def generate_by_shaper(blank: GearBlank, shaper: ShaperCutter) -> ToothProfile:
     except ValueError as exc:
         raise ValueError(f"ShaperCutter (z0 = {z0}, x0 = {shaper.x0}, ha0 = {shaper.ha0}): the shaper tooth "
                          f"is not valid: {exc}") from None
-    r0, rb0 = sh.r_ref, sh.r_base
+    rb0 = sh.r_base
     e = np.pi * mt - blank.s_ref
     aw_ang = float(inverse_involute(involute(at) + (e - sh.s_ref) / (mt * (z - z0))))
     a_w = (rb - rb0) / np.cos(aw_ang)

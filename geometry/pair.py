@@ -129,7 +129,6 @@ class CylindricalPair:
         _, idx = self._tree.query(q)
         nseg = len(self._seg)
         best = np.full(len(q), np.inf)
-        sgn = np.zeros(len(q))
         foot = np.zeros((len(q), 2))
         segi = np.zeros(len(q), int)
         for off in (-1, 0):

@@ -122,14 +122,12 @@ def build_model(case: CylindricalCase) -> PairModel:
     pair = CylindricalPair(p1, p2, a, b, case.lead_misalignment, case.lead_deviation)
     # interference check of the internal pair: the ring's tip must stay outside the pinion's base circle path
     if case.gear.internal:
-        L1 = np.sqrt(p1.r_tip ** 2 - p1.r_base ** 2)
         L2 = np.sqrt(p2.r_tip ** 2 - p2.r_base ** 2)
         T1T2 = np.sqrt(a ** 2 - (p2.r_base - p1.r_base) ** 2)
         if L2 < T1T2:
             raise CaseError("gear.tip_diameter_mm", 2 * p2.r_tip, "a ring tip outside the interference point "
                             f"(tip diameter > {2 * np.hypot(p2.r_base, T1T2):.3f} mm): the ring tip cuts the pinion "
                             "below its base circle")
-        del L1
     r_b = (0.5 * case.pinion.bore_diameter) if case.pinion.bore_diameter else max(p1.r_root - 4 * case.module,
                                                                                    0.35 * p1.r_root)
     if r_b >= p1.r_root - 0.5 * case.module:

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.design import control_point_design, cycle_metrics, synthesize_pinion
+from geometry.bevel.design import cycle_metrics, synthesize_pinion
 from geometry.bevel.generation import generate_flank, standard_gear_cut
 from geometry.bevel.machine import MemberCut
 from geometry.bevel.synthesis import FlankTarget, generated_curvature, local_synthesis, te_curvature

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from geometry.cylindrical import flank_curvatures, flank_point_normal, helical_flank
+from geometry.cylindrical import flank_point_normal, helical_flank
 from geometry.flank import Flank, surface_curvatures
 from geometry.involute import GearBlank, RackCutter, generate_by_rack
 

@@ -9,7 +9,7 @@ import pytest
 from conftest import with_case
 from geometry.cylindrical import arc_length
 from ltca.case import Modifications
-from ltca.loaded import hertz_line, solve_position
+from ltca.loaded import solve_position
 from ltca.run import analyse, cycle_rolls
 
 
