@@ -2,16 +2,24 @@
 
 The body (the teeth that can touch plus one neighbour each side, rim down to the bore, fixed there)
 is meshed once, factorised once, and loaded by a unit normal force spread over a small patch around
-each node of a coarse grid on the loaded flanks. The FE displacement is read not at the flank but at
-points a depth ``d`` below it, where the coarse mesh is already accurate (Saint-Venant); the local
-part is added from the half-space solution (DESIGN.md "Near field", after Vijayakar, IJNME 31 (1991)):
+each node of a coarse grid on the loaded flanks. The coarse FE cannot resolve the contact's local
+deformation, so the compliance is split (DESIGN.md "Near field", after Vijayakar, IJNME 31 (1991)):
 
-    C_ij = C_FE(j -> y_i) + [C_HS(j -> x_i) - C_HS(j -> y_i)],   y_i = x_i - d n_i.
+    C_ij = R_ij + C_HS(cell j -> x_i),
+    R = 2 R(d) - R(2d),   R(d)_ij = C_FE(patch j -> x_i - d n_i) - C_HS(patch j -> x_i - d n_i).
 
-The FE part is stored on the grid and interpolated bilinearly (in flank arc length and axial position)
-to any contact cell, for the source and the receiver alike, so one factorisation serves every mesh
-position and every micro-geometry change. Root stress responses at fillet points are stored from the
-same solves, for superposition.
+The regular part R(d) is the FE response minus the half-space (Boussinesq) response of the *same*
+patch load at the *same* read point, so whatever the FE sees of the patch's spreading and of the
+bilinear grid interpolation cancels; it is read at two depths where the coarse mesh is accurate and
+extrapolated linearly to the flank (it varies linearly with depth there: flank curvature, finite tooth).
+The contact cells add their own half-space response at the flank (:mod:`ltca.loaded`). Checked against
+CalculiX (issue 4): a single read depth without the matched subtraction made the FZG pitch-point TE
+3 % too stiff; this split converges to it with the flank element size.
+
+R is stored on the grid and interpolated bilinearly (in flank arc length and axial position) to any
+contact cell, for the source and the receiver alike, so one factorisation serves every mesh position
+and every micro-geometry change. Root stress responses at fillet points are stored from the same
+solves, for superposition.
 """
 from __future__ import annotations
 
@@ -41,7 +49,7 @@ class ComplianceSpec:
     r_bore: float                 # bore radius (internal gear: outer rim radius)
     h_flank: float
     h_body: float
-    depth: float                  # matching depth d of the near-field correction, mm
+    depth: float                  # shallower read depth d of the regular part (also 2d), mm; 0: no near field
     young: float
     poisson: float
     root_points: tuple[int, int] = (10, 7)   # fillet points (along fillet, along face) per loaded tooth
@@ -57,10 +65,12 @@ class BodyCompliance:
     s_grid, z_grid : ndarray (ns,), (nz,)
         Grid arc lengths (mm, from the base circle) and axial positions (mm).
     C : ndarray (n, n)
-        Normal displacement into the body at the depth point of grid node i per newton of normal
-        force at grid node j, mm/N; n = len(loaded) * ns * nz, ordered (tooth, s, z).
+        Regular part R of the compliance (module docstring) between grid nodes, mm/N: normal
+        displacement into the body at grid node i per newton of normal force at grid node j, with the
+        half-space part of same-flank pairs removed; n = len(loaded) * ns * nz, ordered (tooth, s, z).
+        Without the near field (depth 0) the FE response read at the flank itself.
     depth : ndarray (ns,)
-        Matching depth used per profile row, mm.
+        Shallower read depth d per profile row (at most 15 % of the local tooth thickness), mm.
     root_points : ndarray (m, 3); root_tooth : ndarray (m,)
     root_stress : ndarray (m, 6, n)
         Voigt stress (xx, yy, zz, yz, xz, xy) at the root points per newton at grid node j, MPa/N.
@@ -135,6 +145,30 @@ def _rotate_tooth(points: np.ndarray, tooth: int, z: int) -> np.ndarray:
     return points @ R.T
 
 
+def _patch_halfspace(nodes, tri, X, Y, Nn, radius, n_teeth, E, nu) -> np.ndarray:
+    """Half-space (Boussinesq) normal displacement at depth point Y_i under the patch load of grid node j.
+
+    Only pairs on the same flank: (n, n) block diagonal, mm/N. The half-space is the one tangent at the
+    receiver: depth and lateral distance are measured along and across its normal, the patch traction is
+    the cosine bell of :func:`fem.elastic.patch_loads` on the facet quadrature points."""
+    from .elastic import patch_quadrature
+    from .halfspace import point_influence
+    n = len(X)
+    m = n // n_teeth
+    patch, _, pts, w = patch_quadrature(nodes, tri, X, radius)
+    H = np.zeros((n, n))
+    for t in range(n_teeth):
+        rows = np.arange(t * m, (t + 1) * m)
+        hit = (patch >= t * m) & (patch < (t + 1) * m)
+        r = pts[hit][None, :, :] - Y[rows][:, None, :]                 # (m, k, 3)
+        depth = np.einsum("akc,ac->ak", r, Nn[rows])
+        lateral = np.linalg.norm(r - depth[..., None] * Nn[rows][:, None, :], axis=-1)
+        G = point_influence(lateral, np.abs(depth), E, nu)
+        S = sp.csr_matrix((w[hit], (np.arange(hit.sum()), patch[hit] - t * m)), shape=(int(hit.sum()), m))
+        H[np.ix_(rows, rows)] = np.asarray((S.T @ G.T).T)
+    return H
+
+
 def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None) -> BodyCompliance:
     """Mesh, assemble, factorise and load one gear body; see the module docstring.
 
@@ -181,18 +215,24 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     # matching depth, at most 30 % of the local tooth thickness (the tooth gets thin near the tip)
     half_angle = np.abs(profile.flank_angle(r_grid, spec.side))
     thick = 2 * r_grid * np.sin(np.clip(half_angle, 0, np.pi / 2))
-    depth = np.minimum(spec.depth, 0.3 * thick)
+    depth = np.minimum(spec.depth, 0.15 * thick)
     X = np.concatenate([f.points.reshape(-1, 3) for f in flanks])
     Nn = np.concatenate([f.normals.reshape(-1, 3) for f in flanks])
-    Y = X - np.tile(np.repeat(depth, nz), len(spec.loaded))[:, None] * Nn
+    d_pt = np.tile(np.repeat(depth, nz), len(spec.loaded))[:, None]
+    near = spec.depth > 0
+    # reads at d and 2d below the flank (at the flank itself without the near field)
+    Y = np.concatenate([X - d_pt * Nn, X - 2 * d_pt * Nn]) if near else X
     names = [f"{kind}_{k}_{'right' if spec.side > 0 else 'left'}" for k in spec.loaded
              for kind in ("flank", "fillet")] + [f"tip_{k}" for k in spec.loaded]
     tri = np.concatenate([mesh.facets[n] for n in names if n in mesh.facets])
     ds = max(np.diff(s_grid).max(), np.diff(z_grid).max())
-    F = patch_loads(mesh.nodes, tri, X, -Nn, 0.75 * ds)
+    radius = 0.75 * ds
+    F = patch_loads(mesh.nodes, tri, X, -Nn, radius)
     Pm = interpolation_matrix(mesh.nodes, mesh.tets, Y)
     n = len(X)
-    O = sp.csr_matrix((-Nn.ravel(), (np.repeat(np.arange(n), 3), np.arange(3 * n))), shape=(n, 3 * n)) @ Pm
+    NN = np.concatenate([Nn, Nn]) if near else Nn
+    O = sp.csr_matrix((-NN.ravel(), (np.repeat(np.arange(len(Y)), 3), np.arange(3 * len(Y)))),
+                      shape=(len(Y), 3 * len(Y))) @ Pm
     roots, root_tooth = [], []
     base = _fillet_points(profile, spec.side, spec.root_points, b, profile.internal)
     for k in spec.loaded:
@@ -205,10 +245,26 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     out = fact.solve(F, observe=sp.vstack([O, S]).tocsr())
     t["solves"] = time.perf_counter() - t0
     say(f"{n} unit loads solved ({t['solves']:.1f} s)")
-    C = out[:n]
-    # Maxwell-Betti reciprocity holds between loads and reads at the same points; here the reads sit a
-    # depth d below the loads, which breaks symmetry only in the near field that the half-space term
-    # replaces anyway: keep the symmetric part so the contact matrix stays symmetric positive definite.
+    if near:
+        # the regular part: FE minus the half-space response of the same patch loads at the same points,
+        # read at d and 2d and extrapolated linearly to the flank (the regular part varies linearly with
+        # depth near the surface: flank curvature and finite tooth; the FE is inaccurate at the flank
+        # itself). Load spreading (patch, grid interpolation) cancels against the near field, which adds
+        # the half-space response of the contact cells at the flank.
+        t0 = time.perf_counter()
+        regular = []
+        for i in (0, 1):
+            H = _patch_halfspace(mesh.nodes, tri, X, Y[i * n:(i + 1) * n], Nn, radius, len(spec.loaded),
+                                 spec.young, spec.poisson)
+            regular.append(out[i * n:(i + 1) * n] - H)
+        C = 2.0 * regular[0] - regular[1]
+        t["half-space"] = time.perf_counter() - t0
+    else:
+        C = out[:n]
+    # Maxwell-Betti reciprocity holds between loads and reads at the same points; the reads sit below the
+    # loads, which breaks symmetry only at the level of the discretisation error: keep the symmetric part
+    # so that the contact matrix stays symmetric positive definite.
     C = 0.5 * (C + C.T)
+    out = out[len(Y):]
     return BodyCompliance(spec, s_grid, z_grid, C, depth, R, np.concatenate(root_tooth) if roots else
-                          np.zeros(0, int), out[n:].reshape(len(R), 6, n), K.shape[0], mesh, fact, F, t)
+                          np.zeros(0, int), out.reshape(len(R), 6, n), K.shape[0], mesh, fact, F, t)

@@ -36,7 +36,7 @@ from fem.solver import Factorization, factorize
 
 __all__ = [
     "assemble_stiffness", "factorize", "Factorization", "rigid_body_modes",
-    "surface_traction_load", "patch_loads", "locate_points", "interpolation_matrix",
+    "surface_traction_load", "patch_loads", "patch_quadrature", "locate_points", "interpolation_matrix",
     "stress_matrix", "p2_shape", "lame",
 ]
 
@@ -279,6 +279,43 @@ def surface_traction_load(nodes: np.ndarray, tri6: np.ndarray, traction: np.ndar
     return np.bincount(dof.ravel(), weights=fa.ravel(), minlength=3 * len(nodes))
 
 
+def patch_quadrature(nodes: np.ndarray, tri6: np.ndarray, centres: np.ndarray, radius: float,
+                     refine: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The traction distribution of :func:`patch_loads` as weighted facet quadrature points.
+
+    Returns
+    -------
+    patch : ndarray of int, (k,)
+        Patch (centre) of each hit.
+    q : ndarray of int, (k,)
+        Flat quadrature point index, ``facet * points_per_facet + point``.
+    points : ndarray, (k, 3)
+        The quadrature points, mm.
+    weights : ndarray, (k,)
+        Cosine-bell weight times area, normalised to sum to 1 per patch (a unit force).
+    """
+    nodes, tri6 = _check_mesh(nodes, tri6, 6, "tri6")
+    c = np.atleast_2d(np.asarray(centres, dtype=float))
+    if c.ndim != 2 or c.shape[1] != 3:
+        raise ValueError(f"centres: shape {c.shape}, must be (m, 3)")
+    if not np.isfinite(radius) or radius <= 0:
+        raise ValueError(f"radius = {radius}: must be > 0 (mm)")
+    X, dA, _ = _facet_quadrature(nodes, tri6, refine)
+    Xf = X.reshape(-1, 3)
+    hits = cKDTree(Xf).query_ball_point(c, radius)
+    counts = np.array([len(h) for h in hits])
+    if np.any(counts == 0):
+        j = int(np.flatnonzero(counts == 0)[0])
+        raise ValueError(f"radius = {radius}: patch {j} at {c[j]} reaches no facet quadrature point; "
+                         "increase radius (> facet size / 2) or refine, or move the centre onto tri6")
+    patch = np.repeat(np.arange(len(c)), counts)
+    q = np.concatenate([np.asarray(h, dtype=np.int64) for h in hits])
+    d = np.linalg.norm(Xf[q] - c[patch], axis=1)
+    w = 0.5 * (1.0 + np.cos(np.pi * np.minimum(d / radius, 1.0))) * dA.ravel()[q]
+    w /= np.bincount(patch, weights=w, minlength=len(c))[patch]
+    return patch, q, Xf[q], w
+
+
 def patch_loads(nodes: np.ndarray, tri6: np.ndarray, centres: np.ndarray, normals: np.ndarray,
                 radius: float, refine: int = 1) -> sp.csc_matrix:
     """Unit loads spread over small surface patches: one column per patch.
@@ -311,30 +348,15 @@ def patch_loads(nodes: np.ndarray, tri6: np.ndarray, centres: np.ndarray, normal
     nodes, tri6 = _check_mesh(nodes, tri6, 6, "tri6")
     c = np.atleast_2d(np.asarray(centres, dtype=float))
     nv = np.atleast_2d(np.asarray(normals, dtype=float))
-    if c.ndim != 2 or c.shape[1] != 3:
-        raise ValueError(f"centres: shape {c.shape}, must be (m, 3)")
     if nv.shape != c.shape:
         raise ValueError(f"normals: shape {nv.shape}, must equal centres' {c.shape}")
-    if not np.isfinite(radius) or radius <= 0:
-        raise ValueError(f"radius = {radius}: must be > 0 (mm)")
     length = np.linalg.norm(nv, axis=1)
     if np.any(length < 1e-12):
         raise ValueError(f"normals: row {int(np.argmin(length))} has zero length, must be non-zero")
     nv = nv / length[:, None]
-    X, dA, N = _facet_quadrature(nodes, tri6, refine)
-    nq = X.shape[1]
-    hits = cKDTree(X.reshape(-1, 3)).query_ball_point(c, radius)
-    counts = np.array([len(h) for h in hits])
-    if np.any(counts == 0):
-        j = int(np.flatnonzero(counts == 0)[0])
-        raise ValueError(f"radius = {radius}: patch {j} at {c[j]} reaches no facet quadrature point; "
-                         "increase radius (> facet size / 2) or refine, or move the centre onto tri6")
-    patch = np.repeat(np.arange(len(c)), counts)
-    q = np.concatenate([np.asarray(h, dtype=np.int64) for h in hits])
-    d = np.linalg.norm(X.reshape(-1, 3)[q] - c[patch], axis=1)
-    w = 0.5 * (1.0 + np.cos(np.pi * np.minimum(d / radius, 1.0))) * dA.ravel()[q]
-    total = np.bincount(patch, weights=w, minlength=len(c))
-    w /= total[patch]
+    patch, q, _, w = patch_quadrature(nodes, tri6, c, radius, refine)
+    _, _, N = _facet_quadrature(nodes, tri6[:1], refine)
+    nq = N.shape[0]
     f, iq = np.divmod(q, nq)
     # entries (hit, facet node a, component k)
     val = (w[:, None] * N[iq])[:, :, None] * nv[patch][:, None, :]

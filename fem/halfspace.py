@@ -113,6 +113,21 @@ def subsurface_influence(dx, dy, depth, a, b, E: float, nu: float) -> np.ndarray
     return scale * _corner_sum(dx, dy, z, a, b, nu)
 
 
+def point_influence(lateral, depth, E: float, nu: float) -> np.ndarray:
+    """Displacement along the surface normal at ``depth`` and ``lateral`` distance from a 1 N normal point load.
+
+    Boussinesq: u_z = (1 + nu) / (2 pi E) [2 (1 - nu) / rho + z^2 / rho^3], rho = sqrt(r^2 + z^2)
+    (Johnson, Contact Mechanics, 1985, eq. 3.22c), mm/N; at z = 0 it is (1 - nu^2) / (pi E r).
+    ``lateral`` and ``depth`` (mm, broadcast) must not both vanish."""
+    _check_material(E, nu)
+    r = np.asarray(lateral, dtype=float)
+    z = np.asarray(depth, dtype=float)
+    rho = np.sqrt(r * r + z * z)
+    if np.any(rho <= 0):
+        raise ValueError("point_influence: the load point itself (lateral = depth = 0) is singular")
+    return (1.0 + nu) / (2.0 * np.pi * E) * (2.0 * (1.0 - nu) / rho + z * z / rho ** 3)
+
+
 def surface_influence(dx, dy, a, b, E: float, nu: float) -> np.ndarray:
     """Normal surface displacement due to a cell carrying 1 N as a uniform pressure (Love 1929).
 

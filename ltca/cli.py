@@ -43,7 +43,8 @@ def _cmd_validate(a: argparse.Namespace) -> int:
         from fem.export import CcxNotFound
         from .calculix import run_calculix_validation
         try:
-            return run_calculix_validation(a.case, a.positions, a.out, refine=a.refine, progress=not a.quiet)
+            return run_calculix_validation(a.case, a.positions, a.out, refine=a.refine, level=a.level,
+                                           progress=not a.quiet)
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
             return 2
@@ -122,7 +123,10 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--case", default="cases/fzg_c14.toml", help="case for --reference calculix")
     v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
                    help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9)")
-    v.add_argument("--refine", type=int, default=1, help="CalculiX contact-band refinements (convergence check)")
+    v.add_argument("--refine", type=int, default=2,
+                   help="CalculiX contact-band refinements at the first position (its convergence check)")
+    v.add_argument("--level", type=int, default=1,
+                   help="the rung of the CalculiX ladder used at every position (0 coarsest; default 1)")
     v.add_argument("--quiet", action="store_true")
     v.set_defaults(func=_cmd_validate)
 

@@ -44,7 +44,7 @@ class Fidelity:
         h = p["h_flank"] * module
         return Fidelity(h_flank=h, h_body=p["h_body"] * module, grid=tuple(p["grid"]),
                         cells_per_b=p["cells_per_b"], slices=p["slices"], near_field=p["near_field"],
-                        depth=p.get("depth", 1.5 * h) if p["near_field"] else 0.0, window=p.get("window", 2.0))
+                        depth=p.get("depth", 0.75 * h) if p["near_field"] else 0.0, window=p.get("window", 2.0))
 
 
 def hertz_line(w: float, R: float, E: float, nu: float) -> tuple[float, float]:
@@ -197,13 +197,13 @@ def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict, torque
     return out, zc, dz, ds
 
 
-def _near_field_block(I, J, d1, d2, Vs, Vz, E, nu, quantum=0.01):
-    """Half-space near-field term of both bodies for one tooth's cells on the lattice, (n, n).
+def _near_field_block(I, J, Vs, Vz, E, nu):
+    """Half-space surface compliance of both bodies between one tooth's cells on the lattice, (n, n), mm/N.
 
-    Cells (I, J) are lattice indices; one lattice step is the 3D vector Vs (profile) or Vz (face);
-    d1, d2 are the matching depths of the two bodies at the target cells (quantised to ``quantum`` mm
-    so that the term is tabulated over integer offsets)."""
-    from fem.halfspace import subsurface_influence, surface_influence
+    Cells (I, J) are lattice indices; one lattice step is the 3D vector Vs (profile) or Vz (face). The
+    bodies' FE parts have their own half-space response removed (:mod:`fem.compliance`), so this is
+    the whole local term; it is tabulated over integer lattice offsets."""
+    from fem.halfspace import surface_influence
     e1 = Vs / np.linalg.norm(Vs)
     nrm = np.cross(Vs, Vz)
     area = np.linalg.norm(nrm)
@@ -215,16 +215,8 @@ def _near_field_block(I, J, d1, d2, Vs, Vz, E, nu, quantum=0.01):
     DI, DJ = np.meshgrid(di, dj, indexing="ij")
     X = DI * (Vs @ e1) + DJ * (Vz @ e1)
     Y = DI * (Vs @ e2) + DJ * (Vz @ e2)
-    surf = surface_influence(X, Y, a, bh, E, nu)
-    oi, oj = I[:, None] - I[None, :] - di[0], J[:, None] - J[None, :] - dj[0]
-    out = np.zeros((len(I), len(I)))
-    for d in (d1, d2):
-        q = np.round(d / quantum).astype(int)
-        for qv in np.unique(q):
-            table = surf - subsurface_influence(X, Y, qv * quantum, a, bh, E, nu)
-            rows = np.flatnonzero(q == qv)
-            out[rows] += table[oi[rows], oj[rows]]
-    return out
+    table = 2.0 * surface_influence(X, Y, a, bh, E, nu)
+    return table[I[:, None] - I[None, :] - di[0], J[:, None] - J[None, :] - dj[0]]
 
 
 @dataclass(frozen=True)
@@ -278,13 +270,11 @@ def _system(lm: LoadedModel, phi1: float, strips, zc, dz: float, ds: float, cycl
     W2 = lm.body2.weights(gt, gs, gz)
     C = np.asarray(W1 @ (W1 @ lm.body1.C).T) + np.asarray(W2 @ (W2 @ lm.body2.C).T)
     if fid.near_field:
-        d1 = np.interp(s, lm.body1.s_grid, lm.body1.depth)
-        d2 = np.interp(gs, lm.body2.s_grid, lm.body2.depth)
         E, nu = model.case.young, model.case.poisson
         for k in np.unique(tooth):
             m = np.flatnonzero(tooth == k)
             c = m[len(m) // 2]
-            C[np.ix_(m, m)] += _near_field_block(lat[m], sl[m], d1[m], d2[m], Ps[c] * ds, Pz[c] * dz, E, nu)
+            C[np.ix_(m, m)] += _near_field_block(lat[m], sl[m], Ps[c] * ds, Pz[c] * dz, E, nu)
     else:   # the coarse FE alone is (nearly) singular at sub-element spacing: a trace of regularisation
         C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
     return _System(tooth, sl, lat, s, z, g0, h1, h2, gt, gs, gz, area, 0.5 * (C + C.T), W1, W2)
