@@ -44,6 +44,7 @@ def _cmd_validate(a: argparse.Namespace) -> int:
         from .calculix import run_calculix_validation
         try:
             return run_calculix_validation(a.case, a.positions, a.out, refine=a.refine, level=a.level,
+                                           band_um=a.band, coarse_body=a.coarse_body,
                                            progress=not a.quiet)
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
@@ -127,6 +128,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="CalculiX contact-band refinements at the first position (its convergence check)")
     v.add_argument("--level", type=int, default=1,
                    help="the rung of the CalculiX ladder used at every position (0 coarsest; default 1)")
+    v.add_argument("--band", type=float, metavar="UM",
+                   help="CalculiX contact-band element size at rung 0, um (default 3/4 of the Hertz half-width)")
+    v.add_argument("--coarse-body", action="store_true",
+                   help="CalculiX elements of our coarse fidelity away from the contact band (0.45 m, 1.6 m)")
     v.add_argument("--quiet", action="store_true")
     v.set_defaults(func=_cmd_validate)
 

@@ -86,19 +86,28 @@ def test_bad_positions_are_case_errors(tmp_path):
 
 
 @pytest.mark.calculix
-@pytest.mark.slow
 @needs_ccx
-def test_pitch_point_against_calculix(fzg_lm, tmp_path):
-    """FZG C14, 200 N m, pitch point at CalculiX level 0 (contact band b/2, ~230k dofs, ~13 min on 2 cores).
+def test_double_contact_against_calculix(fzg_lm, tmp_path):
+    """FZG C14, 200 N m, -9 deg roll (two pairs in contact): ours (default fidelity) against CalculiX.
 
-    Level 0 is the coarsest rung of the CalculiX ladder, so the bounds are wider than the issue's (which
-    apply to the converged level): measured on this machine TE -3.2 %, fitted peak -3.5 %."""
+    CI-sized CalculiX model: contact band of 300 um elements and our coarse fidelity's element sizes
+    elsewhere (~110k dofs, ~2 min on 2 cores). At the pitch point this model's TE is within 0.2 % of
+    the 100 um / default-body one (121.41 vs 121.24 arcsec), so TE and load sharing are compared at
+    the issue's bounds (3 %, 0.03); its contact pressure is not resolved at this size and is not compared
+    (`ltca validate --reference calculix` does, on the refined ladder)."""
+    import dataclasses
     from ltca.calculix import ccx_ladder, solve_ccx, solve_ours
     torque = fzg_lm.model.case.torques[0]
-    ours, _ = solve_ours(fzg_lm, 0.0, torque)
-    st = ccx_ladder(fzg_lm.b_nom, fzg_lm.model.case.module, refine=0)[0]
-    ccx = solve_ccx(fzg_lm, 0.0, torque, st, tmp_path, say=lambda m: None)
-    assert abs(ours.te / ccx.te - 1) < 0.05
-    assert abs(ccx.share(fzg_lm.teeth1)[0] - 1.0) < 0.03
-    assert abs(sum(ccx.pair_load.values()) * fzg_lm.model.pinion.r_base / torque - 1) < 0.02
-    assert abs(ours.max_pressure / ccx.max_pressure - 1) < 0.08
+    roll = np.radians(-9.0)
+    ours, _ = solve_ours(fzg_lm, roll, torque)
+    st = ccx_ladder(fzg_lm.b_nom, fzg_lm.model.case.module, refine=0, h0=0.3, body=(0.45, 1.6))[0]
+    ccx = solve_ccx(fzg_lm, roll, torque, dataclasses.replace(st, threads=2), tmp_path, say=print)
+    print(f"TE ours {ours.te:.2f} CalculiX {ccx.te:.2f} arcsec ({100 * (ours.te / ccx.te - 1):+.2f} %); "
+          f"shares ours {ours.share(fzg_lm.teeth1)} CalculiX {ccx.share(fzg_lm.teeth1)}; "
+          f"wall ours {ours.wall:.2f} s, CalculiX {ccx.wall:.0f} s")
+    assert abs(ours.te / ccx.te - 1) < 0.03
+    so, sc = ours.share(fzg_lm.teeth1), ccx.share(fzg_lm.teeth1)
+    assert sc[0] > 0.3 and sc[1] > 0.3                     # both pairs carry load in CalculiX too
+    assert max(abs(so[k] - sc[k]) for k in fzg_lm.teeth1) < 0.03
+    total = sum(ccx.pair_load.values())
+    assert abs(total * fzg_lm.model.pinion.r_base / torque - 1) < 0.02   # CalculiX's own torque balance
