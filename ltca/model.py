@@ -11,8 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from geometry.cylindrical import flank_point_normal
-import geometry.involute as involute_mod
-from geometry.involute import GearBlank, RackCutter, ShaperCutter, ToothProfile, generate_by_rack, involute, inverse_involute
+from geometry.involute import GearBlank, RackCutter, ToothProfile, generate_by_rack, involute, inverse_involute
+from geometry.shaper import ShaperCutter, generate_by_shaper
 from geometry.modification import FlankModification, profile_slope_from_roll_ratio
 from geometry.pair import CylindricalPair
 
@@ -92,7 +92,7 @@ def _profile(case: CylindricalCase, member: Member, beta: float, name: str) -> T
         if member.internal:
             cutter = ShaperCutter(z0=case.shaper_teeth, x0=case.shaper_profile_shift, ha0=case.rack_addendum,
                                   rho0=case.rack_tip_radius)
-            return involute_mod.generate_by_shaper(blank, cutter)
+            return generate_by_shaper(blank, cutter)
         rack = RackCutter(alpha_n=case.pressure_angle, ha=case.rack_addendum, hf=case.rack_dedendum,
                           rho=case.rack_tip_radius)
         return generate_by_rack(blank, rack)
