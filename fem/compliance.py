@@ -30,7 +30,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from geometry.cylindrical import arc_length, helical_flank
-from .elastic import assemble_stiffness, interpolation_matrix, patch_loads, stress_matrix
+from .elastic import assemble_stiffness
+from .loads import patch_loads
+from .readout import interpolation_matrix, stress_matrix
 from .mesh import SegmentSpec, build_segment
 from .solver import factorize
 
@@ -150,8 +152,8 @@ def _patch_halfspace(nodes, tri, X, Y, Nn, radius, n_teeth, E, nu) -> np.ndarray
 
     Only pairs on the same flank: (n, n) block diagonal, mm/N. The half-space is the one tangent at the
     receiver: depth and lateral distance are measured along and across its normal, the patch traction is
-    the cosine bell of :func:`fem.elastic.patch_loads` on the facet quadrature points."""
-    from .elastic import patch_quadrature
+    the cosine bell of :func:`fem.loads.patch_loads` on the facet quadrature points."""
+    from .loads import patch_quadrature
     from .halfspace import point_influence
     n = len(X)
     m = n // n_teeth

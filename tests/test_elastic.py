@@ -9,6 +9,8 @@ import pytest
 import scipy.sparse as sp
 
 import fem.elastic as el
+import fem.loads as loads
+import fem.readout as readout
 from fem.solver import available_methods
 
 E, NU = 210e3, 0.3
@@ -109,7 +111,7 @@ def test_solvers_agree_multiple_rhs_blocks_and_observe():
         + _dofs(nodes[:, 0] < 1e-12, 2).tolist()
     F = sp.random(K.shape[0], 7, density=0.01, random_state=2, format="csc")
     pts = np.random.default_rng(3).random((20, 3))
-    P = el.interpolation_matrix(nodes, tets, pts)
+    P = readout.interpolation_matrix(nodes, tets, pts)
     ref = None
     for method in available_methods():
         fac = el.factorize(K, np.array(fixed), method)
@@ -140,7 +142,7 @@ def test_bad_input_raises_value_error_naming_parameter():
         el.factorize(K, np.array([K.shape[0]]))
     tri = _boundary_tri6(tets)
     with pytest.raises(ValueError, match="radius"):
-        el.patch_loads(nodes, tri, [[0.5, 0.5, 0.0]], [[0, 0, 1]], radius=0.0)
+        loads.patch_loads(nodes, tri, [[0.5, 0.5, 0.0]], [[0, 0, 1]], radius=0.0)
 
 
 # --- read-out -----------------------------------------------------------------------------
@@ -154,10 +156,10 @@ def test_interpolation_exact_for_quadratic_and_stress_exact_for_linear_field():
         return np.stack([x[:, 0] ** 2 + x[:, 1] * x[:, 2], x[:, 1] ** 2 - 2 * x[:, 0] * x[:, 2] + 1,
                          x[:, 2] * x[:, 0] + 3 * x[:, 1]], axis=1)
 
-    P = el.interpolation_matrix(nodes, tets, pts)
+    P = readout.interpolation_matrix(nodes, tets, pts)
     assert P.shape == (1200, 3 * len(nodes))
     assert np.abs(P @ quad(nodes).ravel() - quad(pts).ravel()).max() < 1e-12
-    elem, bary = el.locate_points(nodes, tets, pts)
+    elem, bary = readout.locate_points(nodes, tets, pts)
     x = np.einsum("na,nak->nk", bary, nodes[tets[elem, :4]])
     assert np.abs(x - pts).max() < 1e-12
 
@@ -166,7 +168,7 @@ def test_interpolation_exact_for_quadratic_and_stress_exact_for_linear_field():
     lam, mu = el.lame(E, NU)
     sig = lam * np.trace(eps) * np.eye(3) + 2 * mu * eps
     voigt = sig[[0, 1, 2, 1, 0, 0], [0, 1, 2, 2, 2, 1]]
-    S = el.stress_matrix(nodes, tets, E, NU, pts)
+    S = readout.stress_matrix(nodes, tets, E, NU, pts)
     out = (S @ (nodes @ A.T).ravel()).reshape(-1, 6)
     assert np.abs(out - voigt).max() < 1e-10 * np.abs(voigt).max()
 
@@ -174,7 +176,7 @@ def test_interpolation_exact_for_quadratic_and_stress_exact_for_linear_field():
 def test_points_outside_are_clamped_into_nearest_element():
     nodes, tets, _ = _skfem_mesh()
     pts = np.array([[0.5, 0.5, 1.0 + 1e-4], [-1e-4, 0.3, 0.3]])
-    elem, bary = el.locate_points(nodes, tets, pts)
+    elem, bary = readout.locate_points(nodes, tets, pts)
     assert np.all(bary >= 0) and np.allclose(bary.sum(axis=1), 1.0)
     x = np.einsum("na,nak->nk", bary, nodes[tets[elem, :4]])
     assert np.abs(x - pts).max() < 2e-4
@@ -191,7 +193,7 @@ def test_patch_loads_resultant_is_exactly_one_newton_and_local():
     centres = np.stack([5 * np.cos(ang), 5 * np.sin(ang), np.linspace(3, 7, 6)], axis=1)
     normals = -centres * [1, 1, 0]                                      # inward, not unit
     radius = 1.2
-    F = el.patch_loads(nodes, tri, centres, normals, radius)
+    F = loads.patch_loads(nodes, tri, centres, normals, radius)
     assert F.shape == (3 * len(nodes), 6)
     Fr = F.toarray().reshape(len(nodes), 3, 6)
     unit = normals / np.linalg.norm(normals, axis=1)[:, None]
@@ -207,14 +209,14 @@ def test_surface_traction_load_resultant_on_flat_and_curved_faces():
     tri = _boundary_tri6(tets)
     top = tri[np.all(np.abs(nodes[tri][..., 2] - 10) < 1e-9, axis=1)]
     t = np.array([1.0, -2.0, 3.0])
-    f = el.surface_traction_load(nodes, top, t).reshape(-1, 3)
+    f = loads.surface_traction_load(nodes, top, t).reshape(-1, 3)
     area = f.sum(axis=0) / t
     # quadratic facets with mid-nodes on the circle: area of the disc to O(h^4)
     assert np.allclose(area, np.pi * 25, rtol=2e-4)
     # moment of a linear traction t_z = x on the disc: int x^2 dA = pi R^4 / 4
     tz = np.zeros((len(nodes), 3))
     tz[:, 2] = nodes[:, 0]
-    fz = el.surface_traction_load(nodes, top, tz).reshape(-1, 3)
+    fz = loads.surface_traction_load(nodes, top, tz).reshape(-1, 3)
     assert abs((fz[:, 2] * nodes[:, 0]).sum() / (np.pi * 5 ** 4 / 4) - 1) < 1e-3
 
 
@@ -228,10 +230,10 @@ def test_cantilever_tip_load_vs_timoshenko_beam():
     fixed = np.concatenate([_dofs(clamp, k) for k in range(3)])
     tri = _boundary_tri6(tets)
     end = tri[np.all(nodes[tri][..., 0] > L - 1e-9, axis=1)]
-    f = el.surface_traction_load(nodes, end, [0.0, 0.0, -P / (B * H)])
+    f = loads.surface_traction_load(nodes, end, [0.0, 0.0, -P / (B * H)])
     assert abs(f.sum() + P) < 1e-9
     u = el.factorize(K, fixed).solve(f)
-    tip = (el.interpolation_matrix(nodes, tets, [[L, B / 2, H / 2]]) @ u)[2]
+    tip = (readout.interpolation_matrix(nodes, tets, [[L, B / 2, H / 2]]) @ u)[2]
     # Timoshenko beam (Timoshenko & Gere): P L^3 / (3 E I) + P L / (kappa G A),
     # kappa of a rectangle = 10 (1 + nu) / (12 + 11 nu) (Cowper 1966)
     I, A, G = B * H ** 3 / 12, B * H, E / (2 * (1 + NU))
@@ -240,7 +242,7 @@ def test_cantilever_tip_load_vs_timoshenko_beam():
     print(f"cantilever: tip {-tip:.6f} mm, Timoshenko {w:.6f} mm, ratio {-tip / w:.4f}")
     assert abs(-tip / w - 1) < 0.02
     # bending stress at mid-span, top fibre: sigma_xx = M (H/2) / I, M = P (L - x)
-    s = (el.stress_matrix(nodes, tets, E, NU, [[L / 2, B / 2, H - 1e-9]]) @ u)[0]
+    s = (readout.stress_matrix(nodes, tets, E, NU, [[L / 2, B / 2, H - 1e-9]]) @ u)[0]
     s_ref = P * (L / 2) * (H / 2) / I
     print(f"cantilever: sigma_xx {s:.3f} MPa, beam {s_ref:.3f} MPa")
     assert abs(s / s_ref - 1) < 0.03
@@ -262,7 +264,7 @@ def _lame_error(size, a=10.0, b=20.0, T=2.0, p=100.0):
     inner = tri[np.all(np.abs(rt - a) < 1e-6 * a, axis=1)]
     r = np.hypot(x, y)
     t = p * np.stack([x / r, y / r, 0 * r], axis=1)      # pressure on r = a pushes outward
-    u = el.factorize(K, fixed).solve(el.surface_traction_load(nodes, inner, t)).reshape(-1, 3)
+    u = el.factorize(K, fixed).solve(loads.surface_traction_load(nodes, inner, t)).reshape(-1, 3)
     # Lame, plane strain (Timoshenko & Goodier, Theory of Elasticity, sec. 30):
     # u_r = (1 + nu) p a^2 / (E (b^2 - a^2)) ((1 - 2 nu) r + b^2 / r)
     ur = (1 + NU) * p * a ** 2 / (E * (b ** 2 - a ** 2)) * ((1 - 2 * NU) * r + b ** 2 / r)

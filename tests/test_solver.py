@@ -14,6 +14,8 @@ import pytest
 import scipy.sparse as sp
 
 import fem.elastic as el
+import fem.loads as loads
+import fem.readout as readout
 from fem.solver import available_methods, factorize
 from test_elastic import _boundary_tri6, _gmsh_tets
 
@@ -45,10 +47,10 @@ def beam():
     top = tri[np.all(np.abs(nodes[tri][:, :, 2] - H) < 1e-9, axis=1)]
     xc, yc = np.meshgrid(np.linspace(0.3 * L, 0.95 * L, 20), np.linspace(0.2 * B, 0.8 * B, 5))
     centres = np.column_stack([xc.ravel(), yc.ravel(), np.full(xc.size, H)])
-    F = el.patch_loads(nodes, top, centres, np.tile([0.0, 0.0, -1.0], (len(centres), 1)), 2.0)
+    F = loads.patch_loads(nodes, top, centres, np.tile([0.0, 0.0, -1.0], (len(centres), 1)), 2.0)
     xo, yo = np.meshgrid(np.linspace(0.25 * L, 0.98 * L, 20), np.linspace(0.1 * B, 0.9 * B, 10))
     points = np.column_stack([xo.ravel(), yo.ravel(), np.full(xo.size, H - 1.0)])
-    O = el.interpolation_matrix(nodes, tets, points)
+    O = readout.interpolation_matrix(nodes, tets, points)
     return K, fixed, F, O
 
 
