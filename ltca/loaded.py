@@ -162,39 +162,72 @@ def _principal_max(sig: np.ndarray) -> np.ndarray:
     return np.linalg.eigvalsh(T)[..., -1]
 
 
-def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict, torque: float, cycle: int = 0):
-    """Contact strips of all teeth at a position, on a lattice of the pinion flank.
+def _tangents(p1, s: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Flank tangents dP/ds, dP/dz (n, 3) of the pinion drive flank, by differences (the flank is exact)."""
+    eps = 1e-4
+    s, z = np.broadcast_arrays(np.atleast_1d(np.asarray(s, float)), np.atleast_1d(np.asarray(z, float)))
+    ra = np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s + eps))
+    Pa, _ = flank_point_normal(p1, +1, ra, z, tooth=0)
+    Pb, _ = flank_point_normal(p1, +1, np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s - eps)), z, tooth=0)
+    Pz1, _ = flank_point_normal(p1, +1, ra, z + eps, tooth=0)
+    return (Pa - Pb) / (2 * eps), (Pz1 - Pa) / eps
 
-    Cells sit on one lattice per flank (arc length step ``ds`` from the form circle, one slice per face
-    step), so that the near-field term only depends on integer offsets and is tabulated."""
+
+def _cells(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict, torque: float, cycle: int = 0):
+    """Contact strips of all teeth at a position, on a lattice of the pinion flank that follows the line.
+
+    Per tooth the unloaded contact line s = q + t z is fitted (t = 0 on a spur flank, the slope of the
+    inclined line on a helical one). The lattice has rectangular cells aligned with that line: step
+    ``dz`` along it (one slice per face step) and step ``ds`` across it, so the near-field term depends on
+    integer offsets only (tabulated), and a helical contact band is covered by cells along it instead of
+    a staircase of face-long rectangles.
+
+    Returns strips [(tooth, slice, lattice indices, s, z, open below, open above)], dz, ds and the lattice
+    of each tooth {tooth: (t, step_s, step_z)}: one step across the line in (s, z)."""
     model, fid = lm.model, lm.fid
-    rb = model.pinion.r_base
+    p1 = model.pinion
+    rb = p1.r_base
     s_lo, s_hi = (arc_length(r, rb) for r in model.pinion_range())
     b = model.face_width
     dz = b / fid.slices
     zc = -0.5 * b + dz * (np.arange(fid.slices) + 0.5)
-    s_scan = np.linspace(s_lo, s_hi, 200)
+    s_scan = np.linspace(s_lo, s_hi, 400)
     S, Z = np.meshgrid(s_scan, zc, indexing="ij")
     ds = lm.half_width(torque) / fid.cells_per_b
-    n_lat = max(1, int(np.floor((s_hi - s_lo) / ds)))
-    out = []
+    out, lattice = [], {}
     for k in lm.teeth1:
         fg = flank_gaps(model, phi1, k, S, Z, cycle=cycle)
         g = np.where(np.isfinite(fg.gap) & (fg.lever1 > 0), fg.gap - fg.lever1 * theta_guess, np.inf)
         if not np.isfinite(g).any() or g.min() > 0.02 + 0.5 * abs(theta_guess) * rb:
             continue
+        has = np.isfinite(g).any(axis=0)
+        s_min = s_scan[np.argmin(g, axis=0)]
+        inner = has & (s_min > s_scan[0]) & (s_min < s_scan[-1])   # the line itself, not a flank border
+        t = float(np.polyfit(zc[inner], s_min[inner], 1)[0]) if inner.sum() >= 3 else 0.0
+        t = 0.0 if abs(t) * b < 1e-9 else t
+        # one step across the line, perpendicular to it on the flank, of 3D length ds
+        Ps, Pz = _tangents(p1, np.median(s_min[has]), 0.0)
+        L = Pz[0] + t * Ps[0]
+        mu = float(Ps[0] @ L / (L @ L))
+        A = (1 - mu * t) * Ps[0] - mu * Pz[0]
+        step_s, step_z = ds * (1 - mu * t) / np.linalg.norm(A), -ds * mu / np.linalg.norm(A)
+        dq = step_s - t * step_z                      # the across coordinate q = s - t z per step
+        lattice[int(k)] = (t, step_s, step_z)
         for j in range(fid.slices):
-            col = g[:, j]
-            if not np.isfinite(col).any():
+            if not has[j]:
                 continue
-            ic = int(round((s_scan[np.argmin(col)] - s_lo) / ds))
+            s0 = s_lo + t * zc[j]                     # cell i of slice j: (s0, zc) + (i + 1/2) step
+            lo_i = int(np.ceil((s_lo - s0) / step_s - 0.5 - 1e-9))
+            hi_i = int(np.floor((s_hi - s0) / step_s - 0.5 + 1e-9)) + 1
+            ic = int(round((s_min[j] - t * zc[j] - s_lo) / dq - 0.5))
             nw = int(np.ceil(fid.window * fid.cells_per_b * widen.get((k, j), 1.0)))
-            i0, i1 = max(0, ic - nw), min(n_lat, ic + nw + 1)
+            i0, i1 = max(lo_i, ic - nw), min(hi_i, ic + nw + 1)
             if i1 <= i0:
                 continue
             idx = np.arange(i0, i1)
-            out.append((k, j, idx, s_lo + (idx + 0.5) * ds, i0 > 0, i1 < n_lat))
-    return out, zc, dz, ds
+            zz = np.clip(zc[j] + (idx + 0.5) * step_z, -0.5 * b, 0.5 * b)
+            out.append((k, j, idx, s0 + (idx + 0.5) * step_s, zz, i0 > lo_i, i1 < hi_i))
+    return out, dz, ds, lattice
 
 
 def _near_field_block(I, J, Vs, Vz, E, nu):
@@ -239,16 +272,16 @@ class _System:
     W2: object
 
 
-def _system(lm: LoadedModel, phi1: float, strips, zc, dz: float, ds: float, cycle: int) -> _System:
+def _system(lm: LoadedModel, phi1: float, strips, dz: float, ds: float, cycle: int, lattice: dict) -> _System:
     """Gaps (separation field + micro-geometry), compliance (FE far field of both bodies, bilinearly
     interpolated, plus the half-space near field) and cell areas of the strips of one position."""
     model, fid = lm.model, lm.fid
     p1 = model.pinion
-    tooth = np.concatenate([np.full(len(x), k) for k, _, x, _, _, _ in strips])
-    sl = np.concatenate([np.full(len(x), j) for _, j, x, _, _, _ in strips])
-    lat = np.concatenate([x for _, _, x, _, _, _ in strips])
-    s = np.concatenate([x for _, _, _, x, _, _ in strips])
-    z = zc[sl]
+    tooth = np.concatenate([np.full(len(x), k) for k, _, x, *_ in strips])
+    sl = np.concatenate([np.full(len(x), j) for _, j, x, *_ in strips])
+    lat = np.concatenate([x[2] for x in strips])
+    s = np.concatenate([x[3] for x in strips])
+    z = np.concatenate([x[4] for x in strips])
     n = len(s)
     g0, h1, h2 = np.empty(n), np.empty(n), np.empty(n)
     gt, gs, gz = np.empty(n, int), np.empty(n), np.empty(n)
@@ -258,14 +291,12 @@ def _system(lm: LoadedModel, phi1: float, strips, zc, dz: float, ds: float, cycl
         fg = flank_gaps(model, phi1, int(k), s[m], z[m], cycle=cycle)
         g0[m], h1[m], h2[m] = fg.gap, fg.lever1, fg.lever2
         gt[m], gs[m], gz[m], P[m] = fg.gear_tooth, fg.gear_s, fg.gear_z, fg.points
-    # cell geometry: flank tangents by central differences (the flank is exact), areas
-    eps = 1e-4
-    ra = np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s + eps))
-    Pa, _ = flank_point_normal(p1, +1, ra, z, tooth=0)
-    Pb, _ = flank_point_normal(p1, +1, np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s - eps)), z, tooth=0)
-    Pz1, _ = flank_point_normal(p1, +1, ra, z + eps, tooth=0)
-    Ps, Pz = (Pa - Pb) / (2 * eps), (Pz1 - Pa) / eps
-    area = np.linalg.norm(np.cross(Ps, Pz), axis=1) * ds * dz
+    # cell geometry: lattice steps across (Vs) and along (Vz) the line from the local flank tangents
+    Ps, Pz = _tangents(p1, s, z)
+    t, st_s, st_z = (np.array([lattice[int(k)][i] for k in tooth]) for i in range(3))
+    Vs = st_s[:, None] * Ps + st_z[:, None] * Pz
+    Vz = (Pz + t[:, None] * Ps) * dz
+    area = np.linalg.norm(np.cross(Vs, Vz), axis=1)
     W1 = lm.body1.weights(tooth, s, z)
     W2 = lm.body2.weights(gt, gs, gz)
     C = np.asarray(W1 @ (W1 @ lm.body1.C).T) + np.asarray(W2 @ (W2 @ lm.body2.C).T)
@@ -274,7 +305,7 @@ def _system(lm: LoadedModel, phi1: float, strips, zc, dz: float, ds: float, cycl
         for k in np.unique(tooth):
             m = np.flatnonzero(tooth == k)
             c = m[len(m) // 2]
-            C[np.ix_(m, m)] += _near_field_block(lat[m], sl[m], Ps[c] * ds, Pz[c] * dz, E, nu)
+            C[np.ix_(m, m)] += _near_field_block(lat[m], sl[m], Vs[c], Vz[c], E, nu)
     else:   # the coarse FE alone is (nearly) singular at sub-element spacing: a trace of regularisation
         C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
     return _System(tooth, sl, lat, s, z, g0, h1, h2, gt, gs, gz, area, 0.5 * (C + C.T), W1, W2)
@@ -294,11 +325,11 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
     theta_guess = warm.theta if warm is not None else torque / (rb1 ** 2 * 14.0e3 * model.face_width)
     widen: dict = {}
     for _ in range(max_widen + 1):
-        strips, zc, dz, ds = _cells(lm, phi1, theta_guess, widen, torque, cycle)
+        strips, dz, ds, lattice = _cells(lm, phi1, theta_guess, widen, torque, cycle)
         if not strips:
             raise ConvergenceError("contact search", float("inf"), 0,
                                    "no tooth pair comes near contact: check the centre distance and the positions")
-        sy = _system(lm, phi1, strips, zc, dz, ds, cycle)
+        sy = _system(lm, phi1, strips, dz, ds, cycle, lattice)
         ok = np.isfinite(sy.gap0) & (sy.lever1 > 0)
         active0 = ok & (sy.gap0 - sy.lever1 * theta_guess < 0)
         try:
@@ -310,7 +341,7 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         F = sol.force
         theta_guess = sol.approach
         more, i0 = False, 0
-        for k, j, _, sv, open_lo, open_hi in strips:
+        for k, j, _, sv, _, open_lo, open_hi in strips:
             f = F[i0:i0 + len(sv)]
             if (open_lo and f[0] > 1e-9 * torque / rb1) or (open_hi and f[-1] > 1e-9 * torque / rb1):
                 widen[(k, j)] = widen.get((k, j), 1.0) * 1.7

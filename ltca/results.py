@@ -17,7 +17,8 @@ __all__ = ["position_dataset", "summary", "write_json", "pressure_on_lattice", "
 
 
 def pressure_on_lattice(lm: LoadedModel, res: PositionResult) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Pressure of one position on the fixed pinion-flank lattice, (tooth, profile, face) in MPa.
+    """Pressure of one position on a fixed pinion-flank grid, (tooth, profile, face) in MPa (cells binned by
+    arc length step ``ds`` and face slice; the largest cell pressure of a bin).
 
     Returns the field and the lattice's roll angles (deg) and axial positions (mm)."""
     from geometry.cylindrical import arc_length
@@ -28,7 +29,9 @@ def pressure_on_lattice(lm: LoadedModel, res: PositionResult) -> tuple[np.ndarra
     n_lat = max(1, int(np.floor((s_hi - s_lo) / ds)))
     field = np.zeros((len(lm.teeth1), n_lat, fid.slices))
     t_idx = np.searchsorted(np.asarray(lm.teeth1), res.tooth)
-    field[t_idx, res.lattice, res.slice] = res.pressure
+    # the contact cells follow the contact line (a sheared lattice on a helical flank): bin them by arc length
+    i = np.clip(np.floor((res.s - s_lo) / ds).astype(int), 0, n_lat - 1)
+    np.maximum.at(field, (t_idx, i, res.slice), res.pressure)
     s = s_lo + (np.arange(n_lat) + 0.5) * ds
     roll = np.degrees(np.sqrt(2 * s / rb))     # involute roll angle at arc length s: s = rb u^2 / 2
     b = model.face_width
