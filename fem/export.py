@@ -17,7 +17,7 @@ Units: mm, N, MPa, rad. Point arrays are (n, 3).
 """
 from __future__ import annotations
 
-import contextlib
+import dataclasses
 import os
 import re
 import shutil
@@ -28,7 +28,6 @@ from pathlib import Path
 
 import numpy as np
 
-from . import mesh as _mesh
 from .mesh import SegmentMesh, SegmentSpec, build_segment
 
 __all__ = ["ContactLine", "build_refined_segment", "facets_near_lines", "DeckBody", "ContactPairSpec", "CcxDeck", "write_deck",
@@ -85,43 +84,16 @@ def _line_size_expression(line: ContactLine, h: float, half_band: float, grow_ac
             f"+{grow_across:.9g}*{excess(coord(el), 0.5 * length + half_band)}")
 
 
-@contextlib.contextmanager
-def _extra_size_fields(expressions: list[str]):
-    """Within the block, fem.mesh's size field is combined (minimum) with MathEval fields."""
-    original = _mesh._set_size_field
-
-    def combined(spec, fine):
-        import gmsh
-        original(spec, fine)
-        fld = gmsh.model.mesh.field
-        base = max(fld.list())
-        tags = [base]
-        for expr in expressions:
-            f = fld.add("MathEval")
-            fld.setString(f, "F", expr)
-            tags.append(f)
-        m = fld.add("Min")
-        fld.setNumbers(m, "FieldsList", tags)
-        fld.setAsBackgroundMesh(m)
-
-    _mesh._set_size_field = combined
-    try:
-        yield
-    finally:
-        _mesh._set_size_field = original
-
-
 def build_refined_segment(spec: SegmentSpec, lines: list[ContactLine], h_contact: float, half_band: float,
                           grow_across: float = 0.3, grow_depth: float = 0.6) -> SegmentMesh:
     """Mesh ``spec`` with elements of size ``h_contact`` (mm) within ``half_band`` (mm) of ``lines``.
 
     Outside the band the size grows by ``grow_across`` per mm along the flank and ``grow_depth`` per mm
-    below it, up to the segment's own graded sizes. Not cached (the spec hash ignores the lines)."""
+    below it, up to the segment's own graded sizes (``SegmentSpec.size_fields``)."""
     if not 0 < h_contact <= spec.h_flank:
         raise ValueError(f"h_contact = {h_contact} must be in (0, h_flank = {spec.h_flank}]")
-    exprs = [_line_size_expression(ln, h_contact, half_band, grow_across, grow_depth) for ln in lines]
-    with _extra_size_fields(exprs):
-        return build_segment(spec, cache_dir=None)
+    exprs = tuple(_line_size_expression(ln, h_contact, half_band, grow_across, grow_depth) for ln in lines)
+    return build_segment(dataclasses.replace(spec, size_fields=exprs), cache_dir=None)
 
 
 def facets_near_lines(mesh: SegmentMesh, groups: tuple[str, ...], lines: list[ContactLine],

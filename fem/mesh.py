@@ -67,6 +67,9 @@ class SegmentSpec:
         Element size on the flank / fillet / tip surfaces of the included teeth and far from them, mm.
     order : int
         Element order, 1 or 2.
+    size_fields : tuple of str
+        Extra gmsh ``MathEval`` size expressions in x, y, z (mm) combined with the graded sizes by their
+        minimum: local refinement, e.g. a band around contact lines (:func:`fem.export.build_refined_segment`).
     """
 
     outline: np.ndarray
@@ -81,6 +84,7 @@ class SegmentSpec:
     h_flank: float = 1.0
     h_body: float = 4.0
     order: int = 2
+    size_fields: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         xy = np.asarray(self.outline, dtype=float)
@@ -130,6 +134,8 @@ class SegmentSpec:
         h.update(repr((int(self.z), tuple(int(k) for k in self.teeth), float(self.r_bore),
                        float(self.face_width), float(self.lead_twist), bool(self.internal),
                        float(self.h_flank), float(self.h_body), int(self.order))).encode())
+        for expr in self.size_fields:
+            h.update(expr.encode())
         return h.hexdigest()[:20]
 
 
@@ -378,7 +384,8 @@ def _label_surfaces(spec: SegmentSpec, pieces: list[_Piece], vol: int) -> dict[i
 
 
 def _set_size_field(spec: SegmentSpec, fine: list[int]) -> None:
-    """h_flank on the ``fine`` surfaces, growing linearly (slope 0.3) to h_body with distance."""
+    """h_flank on the ``fine`` surfaces, growing linearly (slope 0.3) to h_body with distance; the minimum
+    with the spec's extra ``size_fields``."""
     import gmsh
 
     fld = gmsh.model.mesh.field
@@ -394,7 +401,17 @@ def _set_size_field(spec: SegmentSpec, fine: list[int]) -> None:
     fld.setNumber(thr, "SizeMax", spec.h_body)
     fld.setNumber(thr, "DistMin", d_min)
     fld.setNumber(thr, "DistMax", d_min + (spec.h_body - spec.h_flank) / 0.3)
-    fld.setAsBackgroundMesh(thr)
+    if not spec.size_fields:
+        fld.setAsBackgroundMesh(thr)
+        return
+    tags = [thr]
+    for expr in spec.size_fields:
+        f = fld.add("MathEval")
+        fld.setString(f, "F", expr)
+        tags.append(f)
+    m = fld.add("Min")
+    fld.setNumbers(m, "FieldsList", tags)
+    fld.setAsBackgroundMesh(m)
 
 
 class _FaceIndex:
