@@ -88,3 +88,35 @@ def test_pitch_point_without_near_field_is_far_off(fzg_case, fzg_model, tmp_path
     hc = pitch_point_hertz(lm, fzg_case.torques[0])
     print(f"without near field: p0 error {100 * hc.p0_error:+.0f} %, half-width error {100 * hc.b_error:+.0f} %")
     assert abs(hc.p0_error) > 0.5
+
+
+@pytest.mark.parametrize("roll_deg", [-9.0, 9.0])
+def test_double_contact_pressures_match_local_hertz(fzg_lm, fzg_case, roll_deg):
+    """Both contacts of a double-contact position against Hertz for their own curvature and line load.
+
+    At +-9 deg one contact sits near the pinion root (rho1 6-9 mm), the other near the tip (rho1 19-22 mm):
+    the near field must give the local Hertz pressure and width at both, whatever their load share.
+    Curvature radii of involutes at the contact: rho1 = sqrt(2 r_b1 s), rho2 = a sin(alpha_w) - rho1."""
+    import dataclasses
+    from ltca.validate import fit_elliptic
+    lm = dataclasses.replace(fzg_lm, fid=dataclasses.replace(fzg_lm.fid, cells_per_b=10.0, window=2.5))
+    model = lm.model
+    res = solve_position(lm, np.radians(roll_deg), fzg_case.torques[0])
+    dz = model.face_width / lm.fid.slices
+    mid = lm.fid.slices // 2
+    rho_sum = model.pair.a * np.sin(model.pair.alpha_w)
+    checked = 0
+    for k in np.unique(res.tooth):
+        m = (res.tooth == k) & (res.slice == mid)
+        if res.force[m].sum() < 0.1 * res.force.sum() * dz / model.face_width:
+            continue
+        p0, b, s0 = fit_elliptic(res.s[m], res.pressure[m])
+        rho1 = np.sqrt(2 * model.pinion.r_base * s0)
+        R = 1.0 / (1.0 / rho1 + 1.0 / (rho_sum - rho1))
+        b_h, p_h = hertz_line(res.force[m].sum() / dz, R, fzg_case.young, fzg_case.poisson)
+        print(f"roll {roll_deg:+.1f} tooth {k}: rho1 {rho1:.2f} mm, p0 {p0:.0f} vs Hertz {p_h:.0f} MPa, "
+              f"b {1e3 * b:.0f} vs {1e3 * b_h:.0f} um")
+        assert p0 == pytest.approx(p_h, rel=0.02)
+        assert b == pytest.approx(b_h, rel=0.03)
+        checked += 1
+    assert checked == 2
