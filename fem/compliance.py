@@ -214,7 +214,7 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     flanks = [helical_flank(profile, spec.side, b, ns, nz, r_range=tuple(spec.r_range), tooth=k) for k in spec.loaded]
     r_grid, z_grid = flanks[0].u, flanks[0].v
     s_grid = arc_length(r_grid, profile.r_base)
-    # matching depth, at most 30 % of the local tooth thickness (the tooth gets thin near the tip)
+    # read depths d and 2d, 2d at most 30 % of the local tooth thickness (the tooth gets thin near the tip)
     half_angle = np.abs(profile.flank_angle(r_grid, spec.side))
     thick = 2 * r_grid * np.sin(np.clip(half_angle, 0, np.pi / 2))
     depth = np.minimum(spec.depth, 0.15 * thick)

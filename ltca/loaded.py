@@ -34,7 +34,7 @@ class Fidelity:
     cells_per_b: float      # contact cells per nominal Hertz half-width (profile direction)
     slices: int             # contact cells along the face
     near_field: bool        # half-space near-field correction on/off
-    depth: float            # matching depth of the correction, mm
+    depth: float            # read depth d of the FE regular part (and 2d), mm; default 0.75 h_flank
     window: float = 3.0     # strip half-width in nominal Hertz half-widths
 
     @staticmethod
