@@ -120,3 +120,19 @@ def test_double_contact_pressures_match_local_hertz(fzg_lm, fzg_case, roll_deg):
         assert b == pytest.approx(b_h, rel=0.03)
         checked += 1
     assert checked == 2
+
+
+def test_loaded_te_does_not_depend_on_the_read_depth(fzg_case, fzg_model, tmp_path):
+    """The near-field split must not depend on where the FE is read: pitch-point TE for d = 0.7 and 1.35 mm
+    (default 1.01) within 0.5 %. The earlier split (cell half-space subtracted from a patch-loaded FE, one
+    depth) moved by ~1.2 % over the same range and was 3 % stiffer than CalculiX (issue 4)."""
+    from ltca.case import FIDELITIES
+    from ltca.loaded import Fidelity, prepare, te_arcsec
+    te = []
+    for d in (0.7, 1.35):
+        fid = Fidelity.from_preset(FIDELITIES["default"], fzg_case.module, depth=d)
+        lm = prepare(fzg_model, fid, cycle_rolls(30, 16), fzg_case.torques[0], cache_dir=tmp_path)
+        r = solve_position(lm, 0.0, fzg_case.torques[0])
+        te.append(float(te_arcsec(lm, r.theta - r.theta0)))
+    print(f"pitch-point loaded TE at d = 0.7 / 1.35 mm: {te[0]:.2f} / {te[1]:.2f} arcsec")
+    assert abs(te[0] / te[1] - 1) < 0.005

@@ -156,3 +156,17 @@ def test_hertz_point_contact_sphere_on_plane():
     assert p.max() == pytest.approx(p0, rel=0.02)
     assert a_fit == pytest.approx(a, rel=0.02)
     assert sol.approach == pytest.approx(a * a / Rs, rel=0.02)   # Hertz approach delta = a^2 / R
+
+
+def test_point_influence_is_the_small_cell_limit_and_the_surface_formula():
+    """Boussinesq point load (Johnson eq. 3.22c) against the closed-form cell integral and Love's surface value."""
+    from fem.halfspace import point_influence, subsurface_influence
+    E, nu = 206000.0, 0.3
+    lateral = np.array([0.0, 0.5, 1.0, 3.0])
+    depth = np.array([1.0, 0.7, 2.0, 0.5])
+    cell = subsurface_influence(lateral, 0.0, depth, 1e-3, 1e-3, E, nu)   # 2 um square cell carrying 1 N
+    assert np.allclose(point_influence(lateral, depth, E, nu), cell, rtol=1e-5)
+    r = np.array([0.3, 2.0])
+    assert np.allclose(point_influence(r, 0.0, E, nu), (1 - nu ** 2) / (np.pi * E * r), rtol=1e-12)
+    with pytest.raises(ValueError, match="singular"):
+        point_influence(0.0, 0.0, E, nu)
