@@ -111,3 +111,12 @@ def test_double_contact_against_calculix(fzg_lm, tmp_path):
     assert max(abs(so[k] - sc[k]) for k in fzg_lm.teeth1) < 0.03
     total = sum(ccx.pair_load.values())
     assert abs(total * fzg_lm.model.pinion.r_base / torque - 1) < 0.02   # CalculiX's own torque balance
+
+
+def test_narrowest_half_width_is_the_hertz_width(fzg_lm):
+    """The table's CalculiX resolution (elements per half-width) uses our contact width: ~Hertz b."""
+    from ltca.calculix import _narrowest_half_width
+    from ltca.loaded import solve_position
+    res = solve_position(fzg_lm, 0.0, fzg_lm.model.case.torques[0])
+    b = _narrowest_half_width(res)
+    assert abs(b - 0.1995) < res.ds          # shared/reference/hertz.md: 199.5 um at the pitch point
