@@ -31,12 +31,12 @@ import scipy.sparse as sp
 
 from geometry.cylindrical import arc_length, helical_flank
 from .elastic import assemble_stiffness
-from .loads import patch_loads
+from .loads import patch_loads, patch_quadrature
 from .readout import interpolation_matrix, stress_matrix
 from .mesh import SegmentSpec, build_segment
 from .solver import factorize
 
-__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance"]
+__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "segment_spec"]
 
 
 @dataclass(frozen=True)
@@ -147,17 +147,17 @@ def _rotate_tooth(points: np.ndarray, tooth: int, z: int) -> np.ndarray:
     return points @ R.T
 
 
-def _patch_halfspace(nodes, tri, X, Y, Nn, radius, n_teeth, E, nu) -> np.ndarray:
+def _patch_halfspace(quadrature, Y, Nn, n_teeth, E, nu) -> np.ndarray:
     """Half-space (Boussinesq) normal displacement at depth point Y_i under the patch load of grid node j.
 
     Only pairs on the same flank: (n, n) block diagonal, mm/N. The half-space is the one tangent at the
     receiver: depth and lateral distance are measured along and across its normal, the patch traction is
-    the cosine bell of :func:`fem.loads.patch_loads` on the facet quadrature points."""
-    from .loads import patch_quadrature
+    the cosine bell of :func:`fem.loads.patch_loads` on the facet quadrature points (``quadrature``, from
+    :func:`fem.loads.patch_quadrature`)."""
     from .halfspace import point_influence
-    n = len(X)
+    patch, _, pts, w = quadrature
+    n = len(Y)
     m = n // n_teeth
-    patch, _, pts, w = patch_quadrature(nodes, tri, X, radius)
     H = np.zeros((n, n))
     for t in range(n_teeth):
         rows = np.arange(t * m, (t + 1) * m)
@@ -169,6 +169,15 @@ def _patch_halfspace(nodes, tri, X, Y, Nn, radius, n_teeth, E, nu) -> np.ndarray
         S = sp.csr_matrix((w[hit], (np.arange(hit.sum()), patch[hit] - t * m)), shape=(int(hit.sum()), m))
         H[np.ix_(rows, rows)] = np.asarray((S.T @ G.T).T)
     return H
+
+
+def segment_spec(profile, teeth, r_bore: float, face_width: float, h_flank: float, h_body: float) -> SegmentSpec:
+    """The tooth segment of a generated profile (geometry.involute.ToothProfile) to mesh: ``teeth``, bore
+    (internal gear: rim) radius, face width and element sizes in mm."""
+    return SegmentSpec(outline=np.asarray(profile.xy), kind=np.asarray(profile.kind, np.int8),
+                       side=np.asarray(profile.side, np.int8), z=profile.z, teeth=tuple(teeth), r_bore=r_bore,
+                       face_width=face_width, lead_twist=float(np.tan(profile.beta) / profile.r_ref),
+                       internal=profile.internal, h_flank=h_flank, h_body=h_body)
 
 
 def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None) -> BodyCompliance:
@@ -186,11 +195,7 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     say = progress or (lambda msg: None)
     t = {}
     t0 = time.perf_counter()
-    seg = SegmentSpec(outline=np.asarray(profile.xy), kind=np.asarray(profile.kind, np.int8),
-                      side=np.asarray(profile.side, np.int8), z=profile.z, teeth=tuple(spec.teeth),
-                      r_bore=spec.r_bore, face_width=spec.face_width,
-                      lead_twist=float(np.tan(profile.beta) / profile.r_ref), internal=profile.internal,
-                      h_flank=spec.h_flank, h_body=spec.h_body)
+    seg = segment_spec(profile, spec.teeth, spec.r_bore, spec.face_width, spec.h_flank, spec.h_body)
     mesh = build_segment(seg, cache_dir=cache_dir)
     t["mesh"] = time.perf_counter() - t0
     say(f"meshed z={profile.z}: {len(mesh.nodes)} nodes, {len(mesh.tets)} tets, {3 * len(mesh.nodes)} dofs "
@@ -228,8 +233,8 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
              for kind in ("flank", "fillet")] + [f"tip_{k}" for k in spec.loaded]
     tri = np.concatenate([mesh.facets[n] for n in names if n in mesh.facets])
     ds = max(np.diff(s_grid).max(), np.diff(z_grid).max())
-    radius = 0.75 * ds
-    F = patch_loads(mesh.nodes, tri, X, -Nn, radius)
+    quad = patch_quadrature(mesh.nodes, tri, X, 0.75 * ds)
+    F = patch_loads(mesh.nodes, tri, X, -Nn, 0.75 * ds, quadrature=quad)
     Pm = interpolation_matrix(mesh.nodes, mesh.tets, Y)
     n = len(X)
     NN = np.concatenate([Nn, Nn]) if near else Nn
@@ -256,8 +261,7 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
         t0 = time.perf_counter()
         regular = []
         for i in (0, 1):
-            H = _patch_halfspace(mesh.nodes, tri, X, Y[i * n:(i + 1) * n], Nn, radius, len(spec.loaded),
-                                 spec.young, spec.poisson)
+            H = _patch_halfspace(quad, Y[i * n:(i + 1) * n], Nn, len(spec.loaded), spec.young, spec.poisson)
             regular.append(out[i * n:(i + 1) * n] - H)
         C = 2.0 * regular[0] - regular[1]
         t["half-space"] = time.perf_counter() - t0

@@ -127,7 +127,7 @@ def patch_quadrature(nodes: np.ndarray, tri6: np.ndarray, centres: np.ndarray, r
 
 
 def patch_loads(nodes: np.ndarray, tri6: np.ndarray, centres: np.ndarray, normals: np.ndarray,
-                radius: float, refine: int = 1) -> sp.csc_matrix:
+                radius: float, refine: int = 1, quadrature: tuple | None = None) -> sp.csc_matrix:
     """Unit loads spread over small surface patches: one column per patch.
 
     Patch j carries the traction ``w_j(x) n_j / int w_j dA`` with the cosine bell
@@ -149,6 +149,8 @@ def patch_loads(nodes: np.ndarray, tri6: np.ndarray, centres: np.ndarray, normal
         Patch radius [mm], > 0; should span a few quadrature points (facet size / 2 or more).
     refine : int
         Quadrature subdivision levels (1: 28 points per facet).
+    quadrature : tuple, optional
+        The result of :func:`patch_quadrature` for these arguments, when the caller already has it.
 
     Returns
     -------
@@ -164,7 +166,7 @@ def patch_loads(nodes: np.ndarray, tri6: np.ndarray, centres: np.ndarray, normal
     if np.any(length < 1e-12):
         raise ValueError(f"normals: row {int(np.argmin(length))} has zero length, must be non-zero")
     nv = nv / length[:, None]
-    patch, q, _, w = patch_quadrature(nodes, tri6, c, radius, refine)
+    patch, q, _, w = quadrature if quadrature is not None else patch_quadrature(nodes, tri6, c, radius, refine)
     _, _, N = _facet_quadrature(nodes, tri6[:1], refine)
     nq = N.shape[0]
     f, iq = np.divmod(q, nq)

@@ -27,7 +27,7 @@ import numpy as np
 from geometry.cylindrical import arc_length
 from fem.export import (CcxDeck, ContactLine, ContactPairSpec, DeckBody, build_refined_segment, facets_near_lines,
                         read_results, run_ccx, write_deck)
-from fem.mesh import SegmentSpec
+from fem.compliance import segment_spec
 from geometry.pair import rotation_z
 
 from .loaded import LoadedModel, solve_position
@@ -90,13 +90,6 @@ def contact_lines(lm: LoadedModel, phi1: float, cap: float, nz: int = 15) -> lis
             continue
         out.append((k, fg.world[i[keep], j[keep]], fg.normals[i[keep], j[keep]] @ R.T))
     return out
-
-
-def _segment(profile, teeth, r_bore, b, h_flank, h_body) -> SegmentSpec:
-    return SegmentSpec(outline=np.asarray(profile.xy), kind=np.asarray(profile.kind, np.int8),
-                       side=np.asarray(profile.side, np.int8), z=profile.z, teeth=tuple(teeth), r_bore=r_bore,
-                       face_width=b, lead_twist=float(np.tan(profile.beta) / profile.r_ref), internal=profile.internal,
-                       h_flank=h_flank, h_body=h_body)
 
 
 def _fitted_peak(mesh, lines: list[ContactLine], nodes: np.ndarray, pressure: np.ndarray, b: float,
@@ -178,8 +171,8 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
         return out
     b = model.face_width
     t0 = time.perf_counter()
-    spec1 = _segment(p1, lm.body1.spec.teeth, model.r_bore1, b, st.h_flank, st.h_body)
-    spec2 = _segment(p2, lm.body2.spec.teeth, model.r_bore2, b, st.h_flank, st.h_body)
+    spec1 = segment_spec(p1, lm.body1.spec.teeth, model.r_bore1, b, st.h_flank, st.h_body)
+    spec2 = segment_spec(p2, lm.body2.spec.teeth, model.r_bore2, b, st.h_flank, st.h_body)
     L1, L2 = body_lines(inv1), body_lines(inv2)
     m1 = build_refined_segment(spec1, L1, st.h_contact, st.half_band, st.grow_across, st.grow_depth)
     m2 = build_refined_segment(spec2, L2, st.h_contact, st.half_band, st.grow_across, st.grow_depth)

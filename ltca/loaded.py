@@ -293,7 +293,8 @@ def _system(lm: LoadedModel, phi1: float, strips, dz: float, ds: float, cycle: i
         gt[m], gs[m], gz[m], P[m] = fg.gear_tooth, fg.gear_s, fg.gear_z, fg.points
     # cell geometry: lattice steps across (Vs) and along (Vz) the line from the local flank tangents
     Ps, Pz = _tangents(p1, s, z)
-    t, st_s, st_z = (np.array([lattice[int(k)][i] for k in tooth]) for i in range(3))
+    keys = np.array(sorted(lattice))
+    t, st_s, st_z = np.array([lattice[k] for k in keys])[np.searchsorted(keys, tooth)].T
     Vs = st_s[:, None] * Ps + st_z[:, None] * Pz
     Vz = (Pz + t[:, None] * Ps) * dz
     area = np.linalg.norm(np.cross(Vs, Vz), axis=1)
