@@ -85,14 +85,19 @@ def _line_size_expression(line: ContactLine, h: float, half_band: float, grow_ac
 
 
 def build_refined_segment(spec: SegmentSpec, lines: list[ContactLine], h_contact: float, half_band: float,
-                          grow_across: float = 0.3, grow_depth: float = 0.6) -> SegmentMesh:
+                          grow_across: float = 0.3, grow_depth: float = 0.6,
+                          focus: tuple[tuple[ContactLine, float, float], ...] = ()) -> SegmentMesh:
     """Mesh ``spec`` with elements of size ``h_contact`` (mm) within ``half_band`` (mm) of ``lines``.
 
     Outside the band the size grows by ``grow_across`` per mm along the flank and ``grow_depth`` per mm
-    below it, up to the segment's own graded sizes (``SegmentSpec.size_fields``)."""
-    if not 0 < h_contact <= spec.h_flank:
-        raise ValueError(f"h_contact = {h_contact} must be in (0, h_flank = {spec.h_flank}]")
+    below it, up to the segment's own graded sizes (``SegmentSpec.size_fields``). ``focus`` adds finer
+    zones, each (line, h, half_band): typically a short piece of one contact line where the pressure peak
+    is resolved (the smallest size wins)."""
+    for h in (h_contact, *(f[1] for f in focus)):
+        if not 0 < h <= spec.h_flank:
+            raise ValueError(f"contact element size {h} must be in (0, h_flank = {spec.h_flank}]")
     exprs = tuple(_line_size_expression(ln, h_contact, half_band, grow_across, grow_depth) for ln in lines)
+    exprs += tuple(_line_size_expression(ln, h, hb, grow_across, grow_depth) for ln, h, hb in focus)
     return build_segment(dataclasses.replace(spec, size_fields=exprs), cache_dir=None)
 
 

@@ -10,8 +10,8 @@ rotation undetermined before contact closes; the pinion is therefore placed a ti
 (``preload`` of overclosure) into the gear, and ``delta`` is added back to the rotation read.
 
 Compared per position with ours (:func:`ltca.loaded.solve_position`): loaded TE (unloaded part removed,
-arcsec of the gear), load share per pinion tooth, peak pressure, wall time. The CalculiX side is refined
-(contact-band element size) ``refine`` times by 1.5 each; the finest is the reference.
+arcsec of the gear), load share per pinion tooth, peak pressure, wall time. The validation command that
+runs the comparison, with CalculiX's own convergence ladders, is :mod:`ltca.crosscheck`.
 """
 from __future__ import annotations
 
@@ -33,8 +33,8 @@ from geometry.pair import rotation_z
 from .loaded import LoadedModel, solve_position
 from .tca import ARCSEC_PER_RAD, first_contact, flank_gaps
 
-__all__ = ["CcxSettings", "PositionComparison", "ccx_ladder", "richardson", "contact_lines", "solve_ccx", "solve_ours",
-           "run_calculix_validation"]
+__all__ = ["CcxSettings", "Focus", "PositionComparison", "ccx_ladder", "richardson", "contact_lines", "solve_ccx", "solve_ours",
+           "narrowest_contact"]
 
 
 @dataclass(frozen=True)
@@ -50,6 +50,19 @@ class CcxSettings:
     halo: float = 0.6         # contact surfaces extend this far from the unloaded contact lines
     preload: float = 0.2      # initial overclosure rotation, as a fraction of an ISO-stiffness estimate of the TE
     threads: int = 2
+
+
+@dataclass(frozen=True)
+class Focus:
+    """A finer zone of the CalculiX mesh on one contact line, where its peak pressure is resolved (mm).
+
+    The contact line of pinion tooth ``tooth`` between z = ``z0`` -+ ``half_length`` gets elements of size
+    ``h`` within ``half_band`` across it; the peak pressure is then fitted in that window only."""
+    tooth: int
+    z0: float
+    half_length: float
+    h: float
+    half_band: float
 
 
 def ccx_ladder(b_nom: float, module: float, refine: int = 2, penalty_factor: float = 10.0,
@@ -92,9 +105,20 @@ def contact_lines(lm: LoadedModel, phi1: float, cap: float, nz: int = 15) -> lis
     return out
 
 
+def _window(line: ContactLine, focus: Focus) -> ContactLine:
+    """The piece of ``line`` between z = z0 -+ half_length (clipped to the line)."""
+    p0, p1 = np.asarray(line.p0, float), np.asarray(line.p1, float)
+    f = (np.clip([focus.z0 - focus.half_length, focus.z0 + focus.half_length], min(p0[2], p1[2]), max(p0[2], p1[2]))
+         - p0[2]) / (p1[2] - p0[2])
+    return ContactLine(p0 + f[0] * (p1 - p0), p0 + f[1] * (p1 - p0), line.normal)
+
+
 def _fitted_peak(mesh, lines: list[ContactLine], nodes: np.ndarray, pressure: np.ndarray, b: float,
-                 slices: int = 14) -> float:
+                 slices: int = 14, window: tuple[float, float] | None = None) -> float:
     """Largest elliptic-fit peak (Hertz shape across the contact line) over face slices of the slave nodes.
+
+    The slices are 1/``slices`` of the face width ``b`` long; with ``window`` (z range, mm) only the
+    slices inside it count.
 
     Nodal contact pressures of penalty contact on quadratic faces scatter by tens of per cent at a few
     elements per contact width; the fit of p^2 by a parabola across the band (``fit_elliptic``) is the
@@ -104,6 +128,9 @@ def _fitted_peak(mesh, lines: list[ContactLine], nodes: np.ndarray, pressure: np
     X, p = mesh.nodes[nodes[ok] - 1], pressure[ok]
     best = 0.0
     edges = np.linspace(-0.5 * b, 0.5 * b, slices + 1)
+    if window is not None:
+        n = max(1, int(round((window[1] - window[0]) / (b / slices))))
+        edges = np.linspace(window[0], window[1], n + 1)
     for ln in lines:
         p0, d = np.asarray(ln.p0), np.asarray(ln.p1) - np.asarray(ln.p0)
         el = d / np.linalg.norm(d)
@@ -150,8 +177,11 @@ def solve_ours(lm: LoadedModel, roll: float, torque: float, warm=None) -> tuple[
 
 
 def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, workdir: str | Path,
-              theta_hint: float | None = None, say=print) -> PositionComparison:
-    """CalculiX at ``roll`` (rad from the pitch point) under the pinion ``torque`` (N mm)."""
+              theta_hint: float | None = None, say=print, focus: Focus | None = None) -> PositionComparison:
+    """CalculiX at ``roll`` (rad from the pitch point) under the pinion ``torque`` (N mm).
+
+    With ``focus`` the mesh is refined further on a piece of one contact line, and ``max_pressure`` is the
+    peak fitted in that window (``info['p_fit']`` keeps the whole-face fit)."""
     model = lm.model
     p1, p2 = model.pinion, model.gear
     phi1 = model.phi_pitch - roll
@@ -174,8 +204,13 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
     spec1 = segment_spec(p1, lm.body1.spec.teeth, model.r_bore1, b, st.h_flank, st.h_body)
     spec2 = segment_spec(p2, lm.body2.spec.teeth, model.r_bore2, b, st.h_flank, st.h_body)
     L1, L2 = body_lines(inv1), body_lines(inv2)
-    m1 = build_refined_segment(spec1, L1, st.h_contact, st.half_band, st.grow_across, st.grow_depth)
-    m2 = build_refined_segment(spec2, L2, st.h_contact, st.half_band, st.grow_across, st.grow_depth)
+    F1 = F2 = ()
+    if focus is not None:
+        i = [k for k, _, _ in lines].index(focus.tooth)   # ValueError: the focus tooth is not in contact
+        F1 = ((_window(L1[i], focus), focus.h, focus.half_band),)
+        F2 = ((_window(L2[i], focus), focus.h, focus.half_band),)
+    m1 = build_refined_segment(spec1, L1, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F1)
+    m2 = build_refined_segment(spec2, L2, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F2)
     t_mesh = time.perf_counter() - t0
     # contact surfaces: the driving flank (pinion) and the loaded flank and tip (gear) near each contact line
     side2 = "right" if model.gear_side > 0 else "left"
@@ -203,11 +238,12 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
     if done.exists():   # a finished run of this very deck (a crash or a re-run loses nothing already solved)
         rec = json.loads(done.read_text())
         if rec.get("deck_sha256") == digest:
-            say(f"CalculiX roll {np.degrees(roll):+.3f} deg, h_contact {1e3 * st.h_contact:.0f} um: "
-                f"reusing {done} (ccx {rec['wall']:.0f} s)")
+            say(f"CalculiX roll {np.degrees(roll):+.3f} deg, h_contact {1e3 * st.h_contact:.0f} um"
+                f"{f', focus {1e3 * focus.h:.0f} um' if focus else ''}: reusing {done} (ccx {rec['wall']:.0f} s)")
             return PositionComparison("calculix", roll, rec["te"], {int(k): v for k, v in rec["pair_load"].items()},
                                       rec["max_pressure"], rec["wall"], rec["info"])
-    say(f"CalculiX roll {np.degrees(roll):+.3f} deg, h_contact {1e3 * st.h_contact:.0f} um: {n_dofs} dofs, "
+    tag = f", focus {1e3 * focus.h:.0f} um on tooth {focus.tooth}" if focus else ""
+    say(f"CalculiX roll {np.degrees(roll):+.3f} deg, h_contact {1e3 * st.h_contact:.0f} um{tag}: {n_dofs} dofs, "
         f"{len(lines)} contact line(s), meshed in {t_mesh:.1f} s; solving ...")
     wall_ccx = run_ccx(work / "job.inp", threads=st.threads)
     res = read_results(work / "job", ids["rot"], tuple(p.name for p in pairs))
@@ -215,6 +251,11 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
     mid = (res.contact_nodes <= len(m1.nodes)) & (np.abs(z_slave) < 0.35 * b)
     p_mid = float(res.contact_pressure[mid].max()) if mid.any() else 0.0
     p_fit = _fitted_peak(m1, L1, res.contact_nodes, res.contact_pressure, b)
+    p_focus = None
+    if focus is not None:
+        i = [k for k, _, _ in lines].index(focus.tooth)
+        p_focus = _fitted_peak(m1, [L1[i]], res.contact_nodes, res.contact_pressure, b,
+                               window=(focus.z0 - focus.half_length, focus.z0 + focus.half_length))
     theta = delta - res.rotation
     theta0 = float(first_contact(model, phi1, lm.teeth1))
     te = (theta - theta0) / model.pair.ratio * ARCSEC_PER_RAD
@@ -224,11 +265,12 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
     say(f"  ccx {wall_ccx:.1f} s (all {wall:.1f} s): TE {te:.3f} arcsec, loads "
         f"{ {k: round(v, 1) for k, v in loads.items()} } N, p_max {res.max_pressure:.0f} MPa (mid-face {p_mid:.0f}, "
         f"elliptic fit {p_fit:.0f})")
-    out = PositionComparison("calculix", roll, te, loads, p_fit or res.max_pressure, wall,
+    out = PositionComparison("calculix", roll, te, loads, p_focus or p_fit or res.max_pressure, wall,
                              {"theta": theta, "theta0": theta0, "n_dofs": n_dofs, "ccx_wall": wall_ccx,
                               "mesh_wall": t_mesh, "h_contact": st.h_contact, "p_max_mid": p_mid, "p_fit": p_fit,
                               "penalty": st.penalty, "reaction": res.fixed_reaction.tolist(),
-                              "p_max_nodal": res.max_pressure})
+                              "p_max_nodal": res.max_pressure, "p_focus": p_focus,
+                              "focus": dataclasses.asdict(focus) if focus else None})
     done.write_text(json.dumps({"deck_sha256": digest, "te": out.te, "pair_load": out.pair_load,
                                 "max_pressure": out.max_pressure, "wall": out.wall, "info": out.info}, indent=1))
     return out
@@ -247,179 +289,16 @@ def richardson(values: list[float], ratio: float) -> tuple[float, float] | None:
     return float(f2 - d2 / (ratio ** p - 1)), float(p)
 
 
-def _narrowest_half_width(res) -> float:
-    """Smallest contact half-width (mm) among the loaded pinion teeth at mid-face: half the loaded extent of the
-    mid slice's cells across the contact line (one cell size ``res.ds`` per loaded cell)."""
+def narrowest_contact(res) -> tuple[int, float]:
+    """The loaded pinion tooth with the narrowest contact at mid-face, and its half-width (mm): half the loaded
+    extent of the mid slice's cells across the contact line (one cell size ``res.ds`` per loaded cell)."""
     mid = int(np.median(res.slice))
-    widths = []
+    widths = {}
     for k in np.unique(res.tooth):
         m = (res.tooth == k) & (res.slice == mid) & (res.force > 0)
         if m.sum() >= 2:
-            widths.append(0.5 * m.sum() * res.ds)
-    return min(widths) if widths else float("nan")
-
-
-BOUNDS = {"te_rel": 0.03, "share_abs": 0.03, "pressure_rel": 0.05}   # issue 4, spur pair
-BOUNDS_HELICAL_TE = 0.05
-
-
-def _default_rolls_deg(z1: int) -> list[float]:
-    """Five positions over one mesh cycle: pitch point, two single-contact and two double-contact ones."""
-    return [round(f * 360.0 / z1, 4) for f in (0.0, -0.4, -0.2, 0.2, 0.4)]
-
-
-def _plot(rows: list[dict], out: Path, title: str) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 3, figsize=(13, 4))
-    for solver, mk in (("ours", "o"), ("calculix", "s")):
-        r = sorted((x for x in rows if x["solver"] == solver and x["reference"]), key=lambda x: x["roll_deg"])
-        if not r:
-            continue
-        roll = [x["roll_deg"] for x in r]
-        ax[0].plot(roll, [x["te_arcsec"] for x in r], mk + "-", label=solver)
-        ax[1].plot(roll, [x["max_pressure_mpa"] for x in r], mk + "-", label=solver)
-        for k in sorted({k for x in r for k in x["share"]}):
-            ax[2].plot(roll, [x["share"].get(k, 0.0) for x in r], mk + "-", label=f"{solver} tooth {k}")
-    for a, yl in zip(ax, ("loaded TE - unloaded [arcsec]", "peak pressure [MPa]", "load share")):
-        a.set(xlabel="pinion roll from the pitch point [deg]", ylabel=yl)
-        a.grid(alpha=0.3)
-        a.legend(fontsize=7)
-    fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
-
-
-def run_calculix_validation(case_path: str, positions: list[float] | None, out: str, refine: int = 2,
-                            level: int | None = 1, band_um: float | None = None, coarse_body: bool = False,
-                            progress: bool = True) -> int:
-    """Ours against CalculiX on a case at pinion roll angles ``positions`` (deg from the pitch point).
-
-    Every position is solved by CalculiX at ladder rung ``level`` (contact band 3b/4 / 1.5^level; default 1,
-    b/2; None: the finest); then the first position at the other rungs up to ``refine`` (the CalculiX
-    convergence check, which says how far ``level`` is from converged). Each CalculiX run is kept (deck,
-    results, ``result.json``) in its own folder under ``out`` and reused when the same deck is asked for
-    again, so an interrupted validation resumes where it stopped. Prints a
-    table, writes ``calculix.csv``, ``convergence.csv`` and ``calculix.png`` to ``out`` and returns 0
-    when all positions are within the issue's bounds, 1 otherwise. Raises ``CaseError`` on a bad case or
-    position list and ``fem.export.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
-    import sys
-    from fem.export import ccx_path
-    from .case import FIDELITIES, load_case
-    from .errors import CaseError
-    from .loaded import Fidelity, prepare
-    from .model import build_model
-    from .run import cycle_rolls
-    ccx_path()
-    say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
-    if refine < 0 or refine > 4:
-        raise CaseError("--refine", refine, "an integer from 0 to 4")
-    case = load_case(case_path)
-    pitch_deg = 360.0 / case.pinion.teeth
-    rolls_deg = list(positions) if positions else _default_rolls_deg(case.pinion.teeth)
-    bad = [r for r in rolls_deg if not np.isfinite(r) or abs(r) > 0.5 * pitch_deg + 1e-9]
-    if bad:
-        raise CaseError("--positions", bad, f"pinion roll angles in deg within one mesh cycle "
-                        f"(|roll| <= {0.5 * pitch_deg:.4f})")
-    torque = case.torques[0]
-    model = build_model(case)
-    t0 = time.perf_counter()
-    fid = Fidelity.from_preset(FIDELITIES["default"], case.module)
-    lm = prepare(model, fid, cycle_rolls(case.positions, case.pinion.teeth), torque, progress=say)
-    t_prepare = time.perf_counter() - t0
-    if band_um is not None and not (np.isfinite(band_um) and 10.0 <= band_um <= 2000.0):
-        raise CaseError("--band", band_um, "a contact-band element size from 10 to 2000 um")
-    ladder = ccx_ladder(lm.b_nom, case.module, refine, h0=band_um * 1e-3 if band_um else None,
-                        body=(0.45, 1.6) if coarse_body else (0.3, 1.3))
-    helical = abs(case.helix_angle) > 1e-9
-    outdir = Path(out)
-    outdir.mkdir(parents=True, exist_ok=True)
-    if level is None:
-        level = len(ladder) - 1
-    if not 0 <= level < len(ladder):
-        raise CaseError("--level", level, f"an integer from 0 to --refine ({refine})")
-    rows, conv = [], []
-    # every position at `level` first (each CalculiX run is kept in its folder as it finishes), then the
-    # other rungs of the ladder at the first position: the costly fine rungs come last
-    for rd in rolls_deg:
-        roll = np.radians(rd)
-        mine, res = solve_ours(lm, roll, torque)
-        c = solve_ccx(lm, roll, torque, ladder[level], outdir / f"ccx_r{rd:+.4f}_L{level}", say=say)
-        conv.append((rd, level, c))
-        teeth = sorted(set(mine.pair_load) | set(c.pair_load))
-        # CalculiX's resolution of the narrowest contact: its band elements per (our) contact half-width
-        per_b = _narrowest_half_width(res) / ladder[level].h_contact
-        for sol in (mine, c):
-            rows.append({"roll_deg": rd, "solver": sol.solver, "reference": True, "te_arcsec": sol.te,
-                         "share": sol.share(teeth), "max_pressure_mpa": sol.max_pressure, "wall_s": sol.wall,
-                         "n_dofs": sol.info.get("n_dofs", lm.body1.n_dofs + lm.body2.n_dofs), "per_b": per_b})
-    for lev in range(len(ladder)):
-        if lev != level:
-            rd = rolls_deg[0]
-            conv.append((rd, lev, solve_ccx(lm, np.radians(rd), torque, ladder[lev], outdir / f"ccx_r{rd:+.4f}_L{lev}",
-                                            say=say)))
-    conv.sort(key=lambda x: (x[0] != rolls_deg[0], x[1]))
-    # ---- table
-    bound_te = BOUNDS_HELICAL_TE if helical else BOUNDS["te_rel"]
-    ok_all = True
-    lines = [f"{case.name} at {torque * 1e-3:g} N m: ours (default fidelity) against CalculiX "
-             f"(contact band {1e3 * ladder[level].h_contact:.0f} um)",
-             f"{'roll':>7} {'TE ours':>8} {'TE ccx':>8} {'dTE%':>6} {'share ours':>18} {'share ccx':>18} {'dshare':>6} "
-             f"{'p ours':>6} {'p ccx':>6} {'dp%':>6} {'el/b':>5} {'t ours':>7} {'t ccx':>7} {'ratio':>6}"]
-    csv = ["roll_deg,te_ours_arcsec,te_ccx_arcsec,te_diff_pct,share_ours,share_ccx,share_diff_max,p_ours_mpa,"
-           "p_ccx_mpa,p_diff_pct,ccx_elements_per_half_width,t_ours_s,t_ccx_s,time_ratio,ccx_dofs,ok"]
-    t_ours_sum = t_ccx_sum = 0.0
-    for j in range(0, len(rows), 2):
-        a, c = rows[j], rows[j + 1]
-        teeth = sorted(a["share"])
-        dte = c["te_arcsec"] and (a["te_arcsec"] / c["te_arcsec"] - 1)
-        dsh = max(abs(a["share"][k] - c["share"][k]) for k in teeth)
-        dp = c["max_pressure_mpa"] and (a["max_pressure_mpa"] / c["max_pressure_mpa"] - 1)
-        ok = abs(dte) <= bound_te and (helical or (dsh <= BOUNDS["share_abs"] and abs(dp) <= BOUNDS["pressure_rel"]))
-        ok_all &= ok
-        flag = "" if ok else ("  p unresolved by CalculiX (< 2 el/b)" if abs(dte) <= bound_te and
-                              dsh <= BOUNDS["share_abs"] and c["per_b"] < 2 else "  OUT")
-        ratio = c["wall_s"] / a["wall_s"]
-        t_ours_sum += a["wall_s"]
-        t_ccx_sum += c["wall_s"]
-        sh = lambda r: "/".join(f"{r['share'][k]:.3f}" for k in teeth)
-        lines.append(f"{a['roll_deg']:7.3f} {a['te_arcsec']:8.2f} {c['te_arcsec']:8.2f} {100 * dte:+6.2f} {sh(a):>18} "
-                     f"{sh(c):>18} {dsh:6.3f} {a['max_pressure_mpa']:6.0f} {c['max_pressure_mpa']:6.0f} "
-                     f"{100 * dp:+6.1f} {c['per_b']:5.1f} {a['wall_s']:7.2f} {c['wall_s']:7.0f} {ratio:6.0f}{flag}")
-        csv.append(f"{a['roll_deg']},{a['te_arcsec']},{c['te_arcsec']},{100 * dte},{sh(a)},{sh(c)},{dsh},"
-                   f"{a['max_pressure_mpa']},{c['max_pressure_mpa']},{100 * dp},{c['per_b']},{a['wall_s']},{c['wall_s']},{ratio},"
-                   f"{c['n_dofs']},{ok}")
-    n = len(rows) // 2
-    cyc_ours = t_prepare + case.positions * t_ours_sum / n
-    cyc_ccx = case.positions * t_ccx_sum / n
-    lines.append(f"wall time per position: ours {t_ours_sum / n:.2f} s (contact solve; compliance {t_prepare:.1f} s once), "
-                 f"CalculiX {t_ccx_sum / n:.0f} s; ratio {t_ccx_sum / t_ours_sum:.0f}")
-    lines.append(f"whole cycle ({case.positions} positions, extrapolated): ours {cyc_ours:.0f} s incl. compliance, "
-                 f"CalculiX {cyc_ccx:.0f} s; ratio {cyc_ccx / cyc_ours:.0f}")
-    lines.append("CalculiX runs (convergence ladder at the first position; contact band size -> TE, loads, peak "
-                 "pressure, dofs, time):")
-    cl = ["roll_deg,level,h_contact_um,penalty_mpa_per_mm,n_dofs,te_arcsec,pair_load_n,p_fit_mpa,p_nodal_max_mpa,wall_s"]
-    for rd, lev, c in conv:
-        loads = "/".join(f"{v:.1f}" for _, v in sorted(c.pair_load.items()))
-        lines.append(f"  roll {rd:7.3f} level {lev}: {1e3 * c.info['h_contact']:5.0f} um  TE {c.te:8.3f}  loads {loads:>20} N"
-                     f"  p fit {c.max_pressure:6.0f} (nodal max {c.info.get('p_max_nodal', 0):.0f}) MPa  {c.info['n_dofs']} dofs  {c.wall:.0f} s")
-        cl.append(f"{rd},{lev},{1e3 * c.info['h_contact']},{c.info['penalty']},{c.info['n_dofs']},{c.te},{loads},"
-                  f"{c.max_pressure},{c.info.get('p_max_nodal', 0)},{c.wall}")
-    first = sorted((c for rd, _, c in conv if rd == rolls_deg[0]), key=lambda c: -c.info["h_contact"])
-    if len(first) >= 3:
-        a0 = rows[0]
-        for what, key, mine in (("TE", "te", a0["te_arcsec"]), ("peak pressure", "max_pressure", a0["max_pressure_mpa"])):
-            est = richardson([getattr(c, key) for c in first[-3:]], 1.5)
-            if est is not None:
-                lines.append(f"converged CalculiX {what} at roll {rolls_deg[0]:g} (Richardson, observed order "
-                             f"{est[1]:.2f}): {est[0]:.2f}; ours {mine:.2f} ({100 * (mine / est[0] - 1):+.2f} %)")
-            else:
-                lines.append(f"CalculiX {what} at roll {rolls_deg[0]:g} does not converge monotonically over the "
-                             f"ladder: {[round(getattr(c, key), 2) for c in first]}")
-    print("\n".join(lines))
-    (outdir / "calculix.csv").write_text("\n".join(csv) + "\n")
-    (outdir / "convergence.csv").write_text("\n".join(cl) + "\n")
-    _plot(rows, outdir / "calculix.png", f"{case.name}: ours vs CalculiX")
-    return 0 if ok_all else 1
+            widths[int(k)] = 0.5 * m.sum() * res.ds
+    if not widths:
+        return 0, float("nan")
+    k = min(widths, key=widths.get)
+    return k, float(widths[k])

@@ -41,10 +41,10 @@ def _cmd_convergence(a: argparse.Namespace) -> int:
 def _cmd_validate(a: argparse.Namespace) -> int:
     if a.reference == "calculix":
         from fem.export import CcxNotFound
-        from .calculix import run_calculix_validation
+        from .crosscheck import run_calculix_validation
         try:
             return run_calculix_validation(a.case, a.positions, a.out, refine=a.refine, level=a.level,
-                                           band_um=a.band, coarse_body=a.coarse_body,
+                                           band_um=a.band, coarse_body=a.coarse_body, pressure=a.pressure_ladder,
                                            progress=not a.quiet)
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
@@ -132,6 +132,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="CalculiX contact-band element size at rung 0, um (default 3/4 of the Hertz half-width)")
     v.add_argument("--coarse-body", action="store_true",
                    help="CalculiX elements of our coarse fidelity away from the contact band (0.45 m, 1.6 m)")
+    v.add_argument("--pressure-ladder", choices=["auto", "all", "none"], default="auto",
+                   help="where CalculiX refines a mid-face window of the narrowest contact three times for a "
+                        "converged peak pressure: auto (positions whose contact the band does not resolve: "
+                        "< 2 elements per half-width), all or none")
     v.add_argument("--quiet", action="store_true")
     v.set_defaults(func=_cmd_validate)
 

@@ -112,7 +112,7 @@ def iso6336_stiffness(model: PairModel) -> tuple[float, float]:
 def run_validate(out: str = "out/validate", progress: bool = True) -> int:
     """Run the validation cases; print measured vs reference, error and time. Returns an exit status.
 
-    (The CalculiX cross-check is ``ltca.calculix.run_calculix_validation``.)"""
+    (The CalculiX cross-check is ``ltca.crosscheck.run_calculix_validation``.)"""
     from .case import FIDELITIES, load_case
     from .loaded import Fidelity, prepare
     from .model import build_model

@@ -78,7 +78,7 @@ def test_missing_ccx_names_the_install_command(monkeypatch):
 def test_bad_positions_are_case_errors(tmp_path):
     if shutil.which("ccx") is None:
         pytest.skip(f"CalculiX missing: {CCX_INSTALL}")
-    from ltca.calculix import run_calculix_validation
+    from ltca.crosscheck import run_calculix_validation
     from ltca.errors import CaseError
     from conftest import CASES
     with pytest.raises(CaseError, match="positions"):
@@ -115,8 +115,41 @@ def test_double_contact_against_calculix(fzg_lm, tmp_path):
 
 def test_narrowest_half_width_is_the_hertz_width(fzg_lm):
     """The table's CalculiX resolution (elements per half-width) uses our contact width: ~Hertz b."""
-    from ltca.calculix import _narrowest_half_width
+    from ltca.calculix import narrowest_contact
     from ltca.loaded import solve_position
     res = solve_position(fzg_lm, 0.0, fzg_lm.model.case.torques[0])
-    b = _narrowest_half_width(res)
+    b = narrowest_contact(res)[1]
     assert abs(b - 0.1995) < res.ds          # shared/reference/hertz.md: 199.5 um at the pitch point
+
+
+def test_focus_refines_only_its_window_of_the_contact_line(fzg_lm):
+    """The pressure ladder's focus zone: elements of the focus size in the mid-face window of the contact
+    line, the band's size elsewhere along the same line."""
+    from fem.compliance import segment_spec
+    from fem.export import build_refined_segment
+    from geometry.pair import rotation_z
+    from ltca.calculix import Focus, _window, contact_lines
+    model = fzg_lm.model
+    phi1 = model.phi_pitch
+    (k, P, N), = [ln for ln in contact_lines(fzg_lm, phi1, cap=0.01) if ln[0] == 0]
+    R = rotation_z(phi1)[:3, :3]
+    line = ContactLine(P[0] @ R, P[-1] @ R, N[len(N) // 2] @ R)       # into the pinion's own frame
+    focus = Focus(tooth=0, z0=0.0, half_length=1.0, h=0.06, half_band=0.2)
+    win = _window(line, focus)
+    assert np.allclose(sorted([win.p0[2], win.p1[2]]), [-1.0, 1.0])
+    assert np.allclose(np.cross(win.p1 - win.p0, line.p1 - line.p0), 0.0, atol=1e-9)   # a piece of the line
+    p1 = model.pinion
+    spec = segment_spec(p1, fzg_lm.body1.spec.teeth, model.r_bore1, model.face_width, 0.45 * 4.5, 1.6 * 4.5)
+    mesh = build_refined_segment(spec, [line], 0.3, 0.4, 0.4, 0.8, focus=((win, focus.h, focus.half_band),))
+    tri = mesh.facets["flank_0_right"]
+    X = mesh.nodes[tri[:, :3]]
+    c = X.mean(axis=1)
+    edge = np.linalg.norm(X - np.roll(X, 1, axis=1), axis=2).mean(axis=1)
+    p0, d = line.p0, (line.p1 - line.p0) / np.linalg.norm(line.p1 - line.p0)
+    off = np.linalg.norm(np.cross(c - p0, d), axis=1)     # distance from the contact line
+    in_win = (off < 0.1) & (np.abs(c[:, 2]) < 0.8)
+    away = (off < 0.1) & (np.abs(c[:, 2]) > 3.0)
+    print(f"edges: window {np.median(edge[in_win]):.3f} mm ({in_win.sum()} facets), "
+          f"along the line away from it {np.median(edge[away]):.3f} mm")
+    assert 0.04 < np.median(edge[in_win]) < 0.08
+    assert 0.22 < np.median(edge[away]) < 0.36
