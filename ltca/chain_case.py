@@ -1,0 +1,105 @@
+"""Chain case file (TOML): ``[workpiece]`` and ``[[chain]]`` tables with ``[[chain.element]]``.
+
+Every field is checked, and each chain must close on its required ratio; otherwise a
+:class:`ltca.errors.CaseError` names the field. The chains and their evaluation are in
+:mod:`ltca.chain_model`.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ltca.budget_case import _known, _num
+from ltca.chain_model import DEG, LINKS, Chain, ChainElement, evaluate_chain
+from ltca.errors import CaseError
+
+__all__ = ["load_chain_case"]
+
+
+_ELEMENT_KEYS = {"name", "teeth", "pitch_diameter_mm", "link", "fi_um", "Fpr_um", "F_um", "zk",
+                 "fp_um", "turns_factor", "note"}
+_CHAIN_KEYS = {"name", "kind", "workpiece_teeth", "mate_teeth", "input_turn_deg",
+               "closure_tolerance", "element", "note"}
+
+
+def _int(tab: dict, key: str, where: str, lo: int = 1) -> int:
+    val = tab.get(key)
+    if isinstance(val, bool) or not isinstance(val, int) or val < lo:
+        raise CaseError(f"{where}.{key}", val, f"an integer >= {lo}")
+    return val
+
+
+def _element(tab: dict, where: str, first: bool) -> ChainElement:
+    if not isinstance(tab, dict):
+        raise CaseError(where, tab, "a [[chain.element]] table")
+    _known(tab, _ELEMENT_KEYS, where)
+    name = tab.get("name")
+    if not isinstance(name, str) or not name:
+        raise CaseError(f"{where}.name", name, "a non-empty string")
+    link = tab.get("link")
+    if link not in LINKS or (link == "input") != first:
+        raise CaseError(f"{where}.link", link, "'input' for the first element only, else "
+                        "'mesh' or 'shaft'")
+    opt = {k: (_num(tab, k, where, strict=False) if k in tab else None)
+           for k in ("fi_um", "Fpr_um", "F_um", "zk", "fp_um")}
+    if opt["F_um"] is None and (opt["fi_um"] is None or opt["Fpr_um"] is None):
+        raise CaseError(f"{where}.fi_um", opt["fi_um"], "fi_um and Fpr_um (or a printed F_um)")
+    turns = tab.get("turns_factor", False)
+    if not isinstance(turns, bool):
+        raise CaseError(f"{where}.turns_factor", turns, "true or false")
+    return ChainElement(name, _int(tab, "teeth", where), _num(tab, "pitch_diameter_mm", where),
+                        link, opt["fi_um"], opt["Fpr_um"], opt["F_um"], opt["zk"], opt["fp_um"],
+                        turns)
+
+
+def _chain(tab: dict, where: str, work: dict) -> Chain:
+    _known(tab, _CHAIN_KEYS, where)
+    kind = tab.get("kind")
+    if kind not in ("indexing", "envelope"):
+        raise CaseError(f"{where}.kind", kind, "'indexing' or 'envelope'")
+    zp = _int(tab, "workpiece_teeth", where)
+    turn = _num(tab, "input_turn_deg", where)
+    if kind == "indexing":
+        required = 360.0 / (zp * turn)
+    else:  # crown gear of a 90 deg pair: zd = sqrt(z1^2 + z2^2) (seed 002, Table 2)
+        required = np.hypot(zp, _int(tab, "mate_teeth", where)) / zp
+    els = tab.get("element")
+    if not isinstance(els, list) or len(els) < 2:
+        raise CaseError(f"{where}.element", els, "at least two [[chain.element]] tables")
+    elements = tuple(_element(e, f"{where}.element[{i}]", i == 0) for i, e in enumerate(els))
+    radius = work["mn"] * zp / (2.0 * np.cos(work["beta"]))
+    chain = Chain(str(tab.get("name", where)), kind, turn, float(required), elements, radius,
+                  _num(tab, "closure_tolerance", where, default=1e-6))
+    ev = evaluate_chain(chain)
+    if abs(ev.closure) > chain.closure_tolerance:
+        raise CaseError(f"{where}.element", f"ratio {ev.i_nom:.9g}",
+                        f"a chain that closes: required ratio {required:.9g} within "
+                        f"{chain.closure_tolerance:g} (off by {ev.closure:+.3e})")
+    return chain
+
+
+def load_chain_case(path: str) -> tuple[Chain, ...]:
+    """Read a chain case (TOML): ``[workpiece]`` and ``[[chain]]`` with ``[[chain.element]]``.
+
+    Raises
+    ------
+    CaseError
+        Naming the field on any bad, unknown or missing value, or a chain that does not close.
+    """
+    from .case import read_toml
+    doc = read_toml(path)
+    try:
+        _known(doc, {"machine", "workpiece", "chain"}, "case")
+        wp = doc.get("workpiece")
+        if not isinstance(wp, dict):
+            raise CaseError("workpiece", wp, "a [workpiece] table")
+        _known(wp, {"normal_module_mm", "spiral_angle_deg", "note"}, "workpiece")
+        beta = _num(wp, "spiral_angle_deg", "workpiece", strict=False)
+        if beta >= 90:
+            raise CaseError("workpiece.spiral_angle_deg", beta, "an angle in [0, 90) deg")
+        work = {"mn": _num(wp, "normal_module_mm", "workpiece"), "beta": beta * DEG}
+        chains = doc.get("chain")
+        if not isinstance(chains, list) or not chains:
+            raise CaseError("chain", chains, "at least one [[chain]] table")
+        return tuple(_chain(c, f"chain[{i}]", work) for i, c in enumerate(chains))
+    except CaseError as exc:
+        raise CaseError(exc.field, exc.value, exc.allowed, file=path) from None
