@@ -4,7 +4,7 @@ The shaper is an external gear with the blank's module and pressure angle (its o
 rounding); the internal tooth is the envelope of the shaper tooth in the relative rolling of the shaper's
 pitch circle inside the gear's (Litvin & Fuentes, *Gear Geometry and Applied Theory*, 2nd ed. 2004, ch. 13).
 Envelope points follow from Willis' theorem as for the rack (:mod:`geometry.involute`); the frame, the
-profile record and the sampling rules are those of :mod:`geometry.involute`.
+profile record and the sampling rules are those of :mod:`geometry.profile` and :mod:`geometry.transverse`.
 """
 from __future__ import annotations
 
@@ -12,8 +12,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .involute import (GearBlank, RackCutter, ToothProfile, _arc, _assemble, _check, _cw, _pol, _resample, _rot_cw,
-                       generate_by_rack, inverse_involute, involute)
+from .gear_blank import GearBlank, RackCutter, _check
+from .involute import generate_by_rack
+from .profile import ToothProfile, _assemble
+from .transverse import _arc, _cw, _pol, _resample, _rot_cw, inverse_involute, involute
 
 __all__ = ["ShaperCutter", "generate_by_shaper"]
 
