@@ -217,6 +217,11 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
                  f"CalculiX {t_ccx_sum / n:.0f} s; ratio {t_ccx_sum / t_ours_sum:.0f}")
     lines.append(f"whole cycle ({case.positions} positions, extrapolated): ours {cyc_ours:.0f} s incl. compliance, "
                  f"CalculiX {cyc_ccx:.0f} s; ratio {cyc_ccx / cyc_ours:.0f}")
+    fine = max((x for x in conv if x[0] == rolls_deg[0]), key=lambda x: x[1])[2]
+    if fine.info["h_contact"] < ladder[level].h_contact:
+        lines.append(f"converged CalculiX (the band ladder's finest rung, {1e3 * fine.info['h_contact']:.0f} um, at roll "
+                     f"{rolls_deg[0]:g}): {fine.wall:.0f} s per position, ratio {fine.wall * n / t_ours_sum:.0f}; "
+                     f"whole cycle ratio {case.positions * fine.wall / cyc_ours:.0f}")
     lines.append("CalculiX runs (convergence ladder at the first position; contact band size -> TE, loads, peak "
                  "pressure, dofs, time):")
     cl = ["roll_deg,level,h_contact_um,penalty_mpa_per_mm,n_dofs,te_arcsec,pair_load_n,p_fit_mpa,p_nodal_max_mpa,wall_s"]
