@@ -9,13 +9,15 @@ Two ladders say how far that rung is from converged:
 * the **pressure ladder** at positions whose narrowest contact the band does not resolve (double
   contact near the pinion root: b ~ 100 um) refines a 2 mm window of that contact at mid-face only
   (:class:`ltca.calculix.Focus`, sizes b/2, b/3, b/4.5 of its local half-width) on a coarse rest
-  (rung 0, our coarse fidelity's element sizes), and the peak pressure fitted in the window is
-  extrapolated the same way. Ours is compared in the same window.
+  (rung 0, our coarse fidelity's element sizes), with the penalty slope scaled to the window's element
+  size (:func:`ltca.calculix.penalty_slope`), and the peak pressure fitted in the window is extrapolated
+  the same way. Ours is compared in the same window.
 
 Each CalculiX run is kept in its own folder under ``out`` and reused when the same deck is asked for again.
 """
 from __future__ import annotations
 
+import dataclasses
 import sys
 import time
 from dataclasses import dataclass
@@ -23,8 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .calculix import (Focus, PositionComparison, ccx_ladder, narrowest_contact, richardson, solve_ccx,
-                       solve_ours)
+from .calculix import (Focus, PositionComparison, ccx_ladder, narrowest_contact, penalty_slope, richardson,
+                       solve_ccx, solve_ours)
 from .loaded import LoadedModel
 
 __all__ = ["BOUNDS", "BOUNDS_HELICAL_TE", "PressureLadder", "pressure_ladder", "run_calculix_validation"]
@@ -60,7 +62,8 @@ def pressure_ladder(lm: LoadedModel, roll_deg: float, torque: float, res, outdir
     for j in range(rungs):
         h = 0.5 * bl / 1.5 ** j
         f = Focus(tooth=k, z0=0.0, half_length=half_length, h=h, half_band=1.5 * bl + h)
-        runs.append(solve_ccx(lm, roll, torque, base, outdir / f"ccx_r{roll_deg:+.4f}_F{j}", say=say, focus=f))
+        st = dataclasses.replace(base, penalty=penalty_slope(h))
+        runs.append(solve_ccx(lm, roll, torque, st, outdir / f"ccx_r{roll_deg:+.4f}_F{j}", say=say, focus=f))
     est = richardson([c.max_pressure for c in runs[-3:]], 1.5) if len(runs) >= 3 else None
     win = (res.tooth == k) & (np.abs(res.z) <= half_length)
     ours = float(res.pressure[win].max()) if win.any() else float("nan")
