@@ -98,14 +98,15 @@ def test_double_contact_against_calculix(fzg_lm, tmp_path):
     the full ladder (`ltca validate --reference calculix`) is within 2 % of its converged peak; the peak
     pressure is compared at the issue's 5 %."""
     import dataclasses
-    from ltca.calculix import Focus, ccx_ladder, narrowest_contact, solve_ccx, solve_ours
+    from ltca.calculix import Focus, ccx_ladder, narrowest_contact, penalty_slope, solve_ccx, solve_ours
     torque = fzg_lm.model.case.torques[0]
     roll = np.radians(-9.0)
     ours, res = solve_ours(fzg_lm, roll, torque)
     k, b = narrowest_contact(res)
     focus = Focus(tooth=k, z0=0.0, half_length=0.5, h=0.5 * b, half_band=2.0 * b)
     st = ccx_ladder(fzg_lm.b_nom, fzg_lm.model.case.module, refine=0, h0=0.3, body=(0.45, 1.6))[0]
-    ccx = solve_ccx(fzg_lm, roll, torque, dataclasses.replace(st, threads=2), tmp_path, say=print, focus=focus)
+    st = dataclasses.replace(st, threads=2, penalty=penalty_slope(focus.h))   # as the pressure ladder's
+    ccx = solve_ccx(fzg_lm, roll, torque, st, tmp_path, say=print, focus=focus)
     window = (res.tooth == k) & (np.abs(res.z) <= focus.half_length)
     p_ours = res.pressure[window].max()
     print(f"TE ours {ours.te:.2f} CalculiX {ccx.te:.2f} arcsec ({100 * (ours.te / ccx.te - 1):+.2f} %); "
