@@ -134,8 +134,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="CalculiX elements of our coarse fidelity away from the contact band (0.45 m, 1.6 m)")
     v.add_argument("--pressure-ladder", choices=["auto", "all", "none"], default="auto",
                    help="where CalculiX refines a mid-face window of the narrowest contact three times for a "
-                        "converged peak pressure: auto (positions whose contact the band does not resolve: "
-                        "< 2 elements per half-width), all or none")
+                        "converged peak pressure: auto (positions whose narrowest contact has < 3 band elements per "
+                        "half-width, other than the band ladder's first position), all or none")
     v.add_argument("--quiet", action="store_true")
     v.set_defaults(func=_cmd_validate)
 

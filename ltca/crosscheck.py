@@ -6,8 +6,8 @@ Two ladders say how far that rung is from converged:
 
 * the **band ladder** at the first position refines the whole contact band (3b/4, b/2, b/3 of the
   nominal Hertz half-width b) and gives converged TE and peak pressure by Richardson extrapolation;
-* the **pressure ladder** at positions whose narrowest contact the band does not resolve (double
-  contact near the pinion root: b ~ 100 um) refines a 2 mm window of that contact at mid-face only
+* the **pressure ladder** at the other positions whose narrowest contact the band does not resolve
+  (fewer than 3 elements per half-width; double contact near the pinion root has b ~ 100 um) refines a 2 mm window of that contact at mid-face only
   (:class:`ltca.calculix.Focus`, sizes b/2, b/3, b/4.5 of its local half-width) on a coarse rest
   (rung 0, our coarse fidelity's element sizes), with the penalty slope scaled to the window's element
   size (:func:`ltca.calculix.penalty_slope`), and the peak pressure fitted in the window is extrapolated
@@ -108,13 +108,14 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
     Every position is solved by CalculiX at ladder rung ``level`` (contact band 3b/4 / 1.5^level; default 1,
     b/2; None: the finest); then the first position at the other rungs up to ``refine`` (the CalculiX
     convergence check, which says how far ``level`` is from converged). ``pressure`` says where the pressure
-    ladder runs (:func:`pressure_ladder`): "auto" where the band has fewer than 2 elements per half-width of
-    the narrowest contact, "all", or "none"; there its converged peak is the reference pressure. Each
-    CalculiX run is kept (deck,
-    results, ``result.json``) in its own folder under ``out`` and reused when the same deck is asked for
-    again, so an interrupted validation resumes where it stopped. Prints a
-    table, writes ``calculix.csv``, ``convergence.csv`` and ``calculix.png`` to ``out`` and returns 0
-    when all positions are within the issue's bounds, 1 otherwise. Raises ``CaseError`` on a bad case or
+    ladder runs (:func:`pressure_ladder`): "auto" where the band has fewer than 3 elements per half-width
+    of the narrowest contact, except at the first position when the band ladder has its three rungs (its
+    estimate is the reference there); "all"; or "none". Where a ladder ran, its converged peak is the
+    reference pressure. Each CalculiX run is kept (deck, results, ``result.json``) in its own folder under
+    ``out`` and reused when the same deck is asked for again, so an interrupted validation resumes where
+    it stopped. Prints a table, writes ``calculix.csv``, ``convergence.csv``, ``pressure_ladder.csv`` and
+    ``calculix.png`` to ``out`` and returns 0 when all positions are within the issue's bounds, 1
+    otherwise. Raises ``CaseError`` on a bad case or
     position list and ``fem.export.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
     from fem.export import ccx_path
     from .case import FIDELITIES, load_case
@@ -163,8 +164,9 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
         teeth = sorted(set(mine.pair_load) | set(c.pair_load))
         # CalculiX's resolution of the narrowest contact: its band elements per (our) contact half-width
         per_b = narrowest_contact(res)[1] / ladder[level].h_contact
-        if not helical and (pressure == "all" or (pressure == "auto" and per_b < 2.0)):
-            focused[rd] = res
+        banded = rd == rolls_deg[0] and len(ladder) >= 3     # the band ladder converges this one
+        if not helical and (pressure == "all" or (pressure == "auto" and per_b < 3.0 and not banded)):
+            focused[rd] = (res, per_b)
         for sol in (mine, c):
             rows.append({"roll_deg": rd, "solver": sol.solver, "reference": True, "te_arcsec": sol.te,
                          "share": sol.share(teeth), "max_pressure_mpa": sol.max_pressure, "wall_s": sol.wall,
@@ -175,13 +177,22 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
             conv.append((rd, lev, solve_ccx(lm, np.radians(rd), torque, ladder[lev], outdir / f"ccx_r{rd:+.4f}_L{lev}",
                                             say=say)))
     conv.sort(key=lambda x: (x[0] != rolls_deg[0], x[1]))
-    ladders = {rd: pressure_ladder(lm, rd, torque, res, outdir, say=say) for rd, res in focused.items()}
-    for j in range(0, len(rows), 2):   # the pressure ladder's converged peak replaces the band rung's
+    # unresolved positions first: their ladders are the reference pressures
+    order = sorted(focused, key=lambda rd: focused[rd][1])
+    ladders = {rd: pressure_ladder(lm, rd, torque, focused[rd][0], outdir, say=say) for rd in order}
+    first = sorted((c for rd, _, c in conv if rd == rolls_deg[0]), key=lambda c: -c.info["h_contact"])
+    band_est = {what: richardson([getattr(c, key) for c in first[-3:]], 1.5) if len(first) >= 3 else None
+                for what, key in (("TE", "te"), ("peak pressure", "max_pressure"))}
+    for j in range(0, len(rows), 2):   # converged peaks replace the band rung's
         pl = ladders.get(rows[j]["roll_deg"])
         if pl is not None:
             rows[j]["max_pressure_mpa"], rows[j + 1]["max_pressure_mpa"] = pl.ours, pl.converged
             rows[j + 1]["per_b"] = pl.finest_per_b
-            rows[j + 1]["focused"] = True
+            rows[j + 1]["converged"] = "*"
+        elif j == 0 and band_est["peak pressure"] is not None:
+            rows[1]["max_pressure_mpa"] = band_est["peak pressure"][0]
+            rows[1]["per_b"] *= ladder[level].h_contact / first[-1].info["h_contact"]
+            rows[1]["converged"] = "+"
     # ---- table
     bound_te = BOUNDS_HELICAL_TE if helical else BOUNDS["te_rel"]
     ok_all = True
@@ -202,7 +213,7 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
         ok_all &= ok
         flag = "" if ok else ("  p unresolved by CalculiX (< 2 el/b)" if abs(dte) <= bound_te and
                               dsh <= BOUNDS["share_abs"] and c["per_b"] < 2 else "  OUT")
-        flag = (" *" if c.get("focused") else "") + flag
+        flag = (" " + c["converged"] if c.get("converged") else "") + flag
         ratio = c["wall_s"] / a["wall_s"]
         t_ours_sum += a["wall_s"]
         t_ccx_sum += c["wall_s"]
@@ -234,11 +245,10 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
                      f"  p fit {c.max_pressure:6.0f} (nodal max {c.info.get('p_max_nodal', 0):.0f}) MPa  {c.info['n_dofs']} dofs  {c.wall:.0f} s")
         cl.append(f"{rd},{lev},{1e3 * c.info['h_contact']},{c.info['penalty']},{c.info['n_dofs']},{c.te},{loads},"
                   f"{c.max_pressure},{c.info.get('p_max_nodal', 0)},{c.wall}")
-    first = sorted((c for rd, _, c in conv if rd == rolls_deg[0]), key=lambda c: -c.info["h_contact"])
     if len(first) >= 3:
         a0 = rows[0]
         for what, key, mine in (("TE", "te", a0["te_arcsec"]), ("peak pressure", "max_pressure", a0["max_pressure_mpa"])):
-            est = richardson([getattr(c, key) for c in first[-3:]], 1.5)
+            est = band_est[what]
             if est is not None:
                 lines.append(f"converged CalculiX {what} at roll {rolls_deg[0]:g} (Richardson, observed order "
                              f"{est[1]:.2f}): {est[0]:.2f}; ours {mine:.2f} ({100 * (mine / est[0] - 1):+.2f} %)")
@@ -259,8 +269,10 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
                "finest rung: the ladder is not monotone")
         lines.append(f"  converged CalculiX {pl.converged:.0f} MPa ({how}); ours in the window {pl.ours:.0f} "
                      f"({100 * (pl.ours / pl.converged - 1):+.2f} %)")
-    if ladders:
-        lines.append("* peak pressure of that row: the pressure ladder's window (converged CalculiX, ours there)")
+    if any(r.get("converged") for r in rows):
+        lines.append("p ccx is converged CalculiX where marked: + the band ladder's Richardson estimate (whole face), "
+                     "* the pressure ladder's (mid-face window of the narrowest contact; p ours in the same window); "
+                     "el/b is then that of the finest rung; elsewhere the band rung's fitted peak")
     print("\n".join(lines))
     if ladders:
         (outdir / "pressure_ladder.csv").write_text("\n".join(pl_csv) + "\n")
