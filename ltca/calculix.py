@@ -272,7 +272,7 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
     wall = time.perf_counter() - t_all
     say(f"  ccx {wall_ccx:.1f} s (all {wall:.1f} s): TE {te:.3f} arcsec, loads "
         f"{ {k: round(v, 1) for k, v in loads.items()} } N, p_max {res.max_pressure:.0f} MPa (mid-face {p_mid:.0f}, "
-        f"elliptic fit {p_fit:.0f})")
+        f"elliptic fit {p_fit:.0f}{f', in the focus window {p_focus:.0f}' if p_focus else ''})")
     out = PositionComparison("calculix", roll, te, loads, p_focus or p_fit or res.max_pressure, wall,
                              {"theta": theta, "theta0": theta0, "n_dofs": n_dofs, "ccx_wall": wall_ccx,
                               "mesh_wall": t_mesh, "h_contact": st.h_contact, "p_max_mid": p_mid, "p_fit": p_fit,
