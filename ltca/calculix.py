@@ -33,8 +33,8 @@ from geometry.pair import rotation_z
 from .loaded import LoadedModel, solve_position
 from .tca import ARCSEC_PER_RAD, first_contact, flank_gaps
 
-__all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "richardson", "contact_lines", "solve_ccx", "solve_ours",
-           "narrowest_contact"]
+__all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "richardson", "contact_lines",
+           "solve_ccx", "solve_ours", "narrowest_contact"]
 
 
 @dataclass(frozen=True)
@@ -214,9 +214,9 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
     L1, L2 = body_lines(inv1), body_lines(inv2)
     F1 = F2 = ()
     if focus is not None:
-        i = [k for k, _, _ in lines].index(focus.tooth)   # ValueError: the focus tooth is not in contact
-        F1 = ((_window(L1[i], focus), focus.h, focus.half_band),)
-        F2 = ((_window(L2[i], focus), focus.h, focus.half_band),)
+        i_focus = [k for k, _, _ in lines].index(focus.tooth)   # ValueError: the focus tooth is not in contact
+        F1 = ((_window(L1[i_focus], focus), focus.h, focus.half_band),)
+        F2 = ((_window(L2[i_focus], focus), focus.h, focus.half_band),)
     m1 = build_refined_segment(spec1, L1, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F1)
     m2 = build_refined_segment(spec2, L2, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F2)
     t_mesh = time.perf_counter() - t0
@@ -243,14 +243,14 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
     n_dofs = 3 * (len(m1.nodes) + len(m2.nodes))
     digest = hashlib.sha256((work / "job.inp").read_bytes()).hexdigest()
     done = work / "result.json"
+    tag = f", focus {1e3 * focus.h:.0f} um on tooth {focus.tooth}" if focus else ""
     if done.exists():   # a finished run of this very deck (a crash or a re-run loses nothing already solved)
         rec = json.loads(done.read_text())
         if rec.get("deck_sha256") == digest:
-            say(f"CalculiX roll {np.degrees(roll):+.3f} deg, h_contact {1e3 * st.h_contact:.0f} um"
-                f"{f', focus {1e3 * focus.h:.0f} um' if focus else ''}: reusing {done} (ccx {rec['wall']:.0f} s)")
+            say(f"CalculiX roll {np.degrees(roll):+.3f} deg, h_contact {1e3 * st.h_contact:.0f} um{tag}: "
+                f"reusing {done} (ccx {rec['wall']:.0f} s)")
             return PositionComparison("calculix", roll, rec["te"], {int(k): v for k, v in rec["pair_load"].items()},
                                       rec["max_pressure"], rec["wall"], rec["info"])
-    tag = f", focus {1e3 * focus.h:.0f} um on tooth {focus.tooth}" if focus else ""
     say(f"CalculiX roll {np.degrees(roll):+.3f} deg, h_contact {1e3 * st.h_contact:.0f} um{tag}: {n_dofs} dofs, "
         f"{len(lines)} contact line(s), meshed in {t_mesh:.1f} s; solving ...")
     wall_ccx = run_ccx(work / "job.inp", threads=st.threads)
@@ -261,8 +261,7 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
     p_fit = _fitted_peak(m1, L1, res.contact_nodes, res.contact_pressure, b)
     p_focus = None
     if focus is not None:
-        i = [k for k, _, _ in lines].index(focus.tooth)
-        p_focus = _fitted_peak(m1, [L1[i]], res.contact_nodes, res.contact_pressure, b,
+        p_focus = _fitted_peak(m1, [L1[i_focus]], res.contact_nodes, res.contact_pressure, b,
                                window=(focus.z0 - focus.half_length, focus.z0 + focus.half_length))
     theta = delta - res.rotation
     theta0 = float(first_contact(model, phi1, lm.teeth1))
