@@ -33,7 +33,7 @@ from geometry.cylindrical import arc_length, helical_flank
 from .elastic import assemble_stiffness
 from .loads import patch_loads, patch_quadrature
 from .readout import interpolation_matrix, stress_matrix
-from .mesh import SegmentSpec, build_segment
+from .solids import SegmentSpec, build_segment
 from .solver import factorize
 
 __all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "segment_spec"]

@@ -23,8 +23,8 @@ import numpy as np
 
 from .ccx_run import CCX_INSTALL, CcxFailed, CcxNotFound, CcxResult, ccx_path, read_results, run_ccx
 from .ccx_run import _dat_blocks as _dat_blocks, _frd_contact as _frd_contact
-from .contact_refinement import ContactLine, build_refined_segment, facets_near_lines
-from .mesh import SegmentMesh
+from .solids.refinement import ContactLine, build_refined_segment, facets_near_lines
+from .solids.spec import SegmentMesh
 
 __all__ = ["ContactLine", "build_refined_segment", "facets_near_lines", "DeckBody", "ContactPairSpec", "CcxDeck", "write_deck",
            "CcxResult", "read_results", "run_ccx", "ccx_path", "CCX_INSTALL", "CcxNotFound", "CcxFailed"]

@@ -8,7 +8,7 @@ import pytest
 
 from fem.export import (CCX_INSTALL, CcxDeck, CcxNotFound, ContactLine, ContactPairSpec, DeckBody, _face_numbers,
                         ccx_path, facets_near_lines, write_deck)
-from fem.mesh import SegmentMesh
+from fem.solids import SegmentMesh
 
 needs_ccx = pytest.mark.skipif(shutil.which("ccx") is None, reason=f"CalculiX missing: {CCX_INSTALL}")
 

@@ -1,4 +1,4 @@
-"""Tests of fem.mesh: gmsh tooth segments with graded quadratic tetrahedra."""
+"""Tests of fem.solids: gmsh tooth segments with graded quadratic tetrahedra."""
 from __future__ import annotations
 
 import time
@@ -6,7 +6,7 @@ import time
 import numpy as np
 import pytest
 
-from fem.mesh import SegmentMesh, SegmentSpec, build_segment, gmsh_session
+from fem.solids import SegmentMesh, SegmentSpec, build_segment, gmsh_session
 
 
 # ----------------------------------------------------------------------------------------------
@@ -32,7 +32,7 @@ def _line(p, q, step):
 
 
 def tooth_outline(m=4.5, z=16, alpha=np.deg2rad(20.0), internal=False, rho=0.3, step=0.01):
-    """One tooth, dense, in the fem.mesh convention. Returns xy, kind, side, r_root, r_tip."""
+    """One tooth, dense, in the fem.solids convention. Returns xy, kind, side, r_root, r_tip."""
     rp = m * z / 2
     rb = rp * np.cos(alpha)
     if not internal:

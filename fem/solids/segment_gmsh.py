@@ -1,20 +1,16 @@
 """gmsh construction of a tooth segment: OCC solid, surface labels, size field, mesh extraction.
 
-The internals behind :func:`fem.mesh.build_segment`; the transverse section comes from
-:mod:`fem.segment_section`, conventions (points, tooth rotation, helical twist, 10-node tetrahedron
-order) are those of :mod:`fem.mesh`. The gmsh calls run in a fixed order with fixed numbers: the
+The internals behind :func:`fem.solids.segment.build_segment`; the transverse section comes from
+:mod:`fem.solids.section`, conventions (points, tooth rotation, helical twist, 10-node tetrahedron
+order) are those of :mod:`fem.solids.spec`. The gmsh calls run in a fixed order with fixed numbers: the
 mesh, and any deck written from it, is bit-identical for one spec.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
-from .segment_section import SectionPiece, rot2, section_pieces
-
-if TYPE_CHECKING:
-    from .mesh import SegmentSpec
+from .section import SectionPiece, rot2, section_pieces
+from .spec import SegmentSpec
 
 __all__ = ["mesh_with_gmsh"]
 
@@ -198,13 +194,13 @@ def mesh_with_gmsh(spec: SegmentSpec) -> tuple[np.ndarray, np.ndarray, dict[str,
     Parameters
     ----------
     spec : SegmentSpec
-        Geometry and mesh sizes. gmsh must be initialised (:func:`fem.mesh.gmsh_session`); the
+        Geometry and mesh sizes. gmsh must be initialised (:func:`fem.solids.session.gmsh_session`); the
         model is removed and the previous model and options are restored on exit.
 
     Returns
     -------
     nodes, tets, facets
-        As the fields of :class:`fem.mesh.SegmentMesh`.
+        As the fields of :class:`fem.solids.spec.SegmentMesh`.
     """
     import gmsh
 

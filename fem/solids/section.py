@@ -1,19 +1,17 @@
 """Transverse section of a tooth segment as an ordered chain of labelled curves.
 
-The closed boundary of the section of :class:`fem.mesh.SegmentSpec` (teeth outlines, two radial cuts,
+The closed boundary of the section of :class:`fem.solids.spec.SegmentSpec` (teeth outlines, two radial cuts,
 the bore or rim arcs), cut into pieces: every run of equal (kind, side) codes of the tooth outline is
-one spline piece named after its facet group. :mod:`fem.segment_gmsh` sweeps the pieces into the solid
-and names its surfaces by them. Conventions as in :mod:`fem.mesh`.
+one spline piece named after its facet group. :mod:`fem.solids.segment_gmsh` sweeps the pieces into the solid
+and names its surfaces by them. Conventions as in :mod:`fem.solids.spec`.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from .mesh import SegmentSpec
+from .spec import SegmentSpec
 
 __all__ = ["SectionPiece", "rot2", "section_pieces"]
 

@@ -1,9 +1,9 @@
 """Meshing of a tooth segment with contact-line refinement, and the facets near those lines.
 
-:func:`build_refined_segment` meshes a segment like :func:`fem.mesh.build_segment` with an extra size
+:func:`build_refined_segment` meshes a segment like :func:`fem.solids.segment.build_segment` with an extra size
 field: ``h_contact`` in a band around given line segments on the flank, growing with the distance across
 the band and with the depth below it. :func:`facets_near_lines` keeps the facets of named groups near the
-lines (the contact surfaces of a CalculiX deck, :mod:`fem.export`).
+lines (the contact surfaces of a CalculiX deck, :mod:`fem.calculix.deck`).
 
 Units: mm. Point arrays are (n, 3).
 """
@@ -14,7 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .mesh import SegmentMesh, SegmentSpec, build_segment
+from .segment import build_segment
+from .spec import SegmentMesh, SegmentSpec
 
 __all__ = ["ContactLine", "build_refined_segment", "facets_near_lines"]
 

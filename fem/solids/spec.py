@@ -1,11 +1,13 @@
-"""Tooth-segment solids meshed by gmsh with graded quadratic tetrahedra.
+"""The records of a tooth-segment solid meshed by gmsh with graded quadratic tetrahedra: what to mesh, the mesh.
 
 A segment is a few consecutive teeth of a cylindrical gear (spur or helical, external or internal)
 on a slice of the rim, closed by two radial cut faces and the bore (external) or the rim's outer
 cylinder (internal). The transverse section is built from one tooth's dense outline (as produced by
 generation), rotated into place for each included tooth; every run of equal (kind, side) codes becomes
 its own spline curve, so each flank, fillet and tip surface gets its own named facet group.
-The section is built in :mod:`fem.segment_section`, the solid and its mesh in :mod:`fem.segment_gmsh`.
+This module holds the records: what to mesh (:class:`SegmentSpec`) and the mesh (:class:`SegmentMesh`).
+The section is built in :mod:`fem.solids.section`, the solid and its mesh in :mod:`fem.solids.segment_gmsh`,
+the whole by :func:`fem.solids.segment.build_segment`.
 
 Conventions
 -----------
@@ -19,19 +21,12 @@ Conventions
 """
 from __future__ import annotations
 
-import contextlib
 import hashlib
-import os
-import time
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Iterator
 
 import numpy as np
 
-from .segment_gmsh import mesh_with_gmsh
-
-__all__ = ["SegmentSpec", "SegmentMesh", "build_segment", "gmsh_session"]
+__all__ = ["SegmentSpec", "SegmentMesh"]
 
 _VERSION = "mesh-1"                    # bump when the meshing recipe changes (invalidates caches)
 
@@ -68,7 +63,7 @@ class SegmentSpec:
         Element order, 1 or 2.
     size_fields : tuple of str
         Extra gmsh ``MathEval`` size expressions in x, y, z (mm) combined with the graded sizes by their
-        minimum: local refinement, e.g. a band around contact lines (:func:`fem.export.build_refined_segment`).
+        minimum: local refinement, e.g. a band around contact lines (:func:`fem.solids.refinement.build_refined_segment`).
     """
 
     outline: np.ndarray
@@ -168,63 +163,3 @@ class SegmentMesh:
     def n_dofs(self) -> int:
         """Displacement degrees of freedom, 3 per node."""
         return 3 * len(self.nodes)
-
-
-@contextlib.contextmanager
-def gmsh_session(progress: bool = False) -> Iterator[None]:
-    """Initialise gmsh for the duration of a ``with`` block; re-entrant safe.
-
-    If gmsh is already initialised, it is left running on exit (only the models added inside are
-    the caller's to remove). Output goes to the terminal only if ``progress``.
-    """
-    import gmsh
-
-    owner = not gmsh.isInitialized()
-    if owner:
-        gmsh.initialize(readConfigFiles=False, interruptible=False)
-    old_terminal = gmsh.option.getNumber("General.Terminal")
-    gmsh.option.setNumber("General.Terminal", 1 if progress else 0)
-    try:
-        yield
-    finally:
-        if owner:
-            gmsh.finalize()
-        else:
-            gmsh.option.setNumber("General.Terminal", old_terminal)
-
-
-def build_segment(spec: SegmentSpec, cache_dir: str | os.PathLike | None = None,
-                  progress: bool = False) -> SegmentMesh:
-    """Mesh a tooth segment with graded (quadratic) tetrahedra.
-
-    Parameters
-    ----------
-    spec : SegmentSpec
-        Geometry and mesh sizes.
-    cache_dir : path, optional
-        If given, meshes are stored there as ``segment_<spec_hash>.npz`` and reloaded on a hit.
-    progress : bool
-        Let gmsh print to the terminal.
-
-    Returns
-    -------
-    SegmentMesh
-    """
-    t0 = time.perf_counter()
-    key = spec.spec_hash
-    path = None
-    if cache_dir is not None:
-        path = Path(cache_dir) / f"segment_{key}.npz"
-        if path.exists():
-            with np.load(path) as d:
-                facets = {k[len("facet__"):]: d[k] for k in d.files if k.startswith("facet__")}
-                return SegmentMesh(d["nodes"], d["tets"], facets, key, time.perf_counter() - t0)
-    with gmsh_session(progress):
-        nodes, tets, facets = mesh_with_gmsh(spec)
-    mesh = SegmentMesh(nodes, tets, facets, key, time.perf_counter() - t0)
-    if path is not None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".tmp{os.getpid()}.npz")
-        np.savez(tmp, nodes=nodes, tets=tets, **{f"facet__{k}": v for k, v in facets.items()})
-        os.replace(tmp, path)
-    return mesh
