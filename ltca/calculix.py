@@ -25,8 +25,9 @@ from pathlib import Path
 import numpy as np
 
 from geometry.cylindrical import arc_length
-from fem.export import (CcxDeck, ContactLine, ContactPairSpec, DeckBody, build_refined_segment, facets_near_lines,
-                        read_results, run_ccx, write_deck)
+from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
+from fem.calculix.run import read_results, run_ccx
+from fem.solids import ContactLine, build_refined_segment, facets_near_lines
 from fem.compliance import segment_spec
 from geometry.pair import rotation_z
 

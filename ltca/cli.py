@@ -40,7 +40,7 @@ def _cmd_convergence(a: argparse.Namespace) -> int:
 
 def _cmd_validate(a: argparse.Namespace) -> int:
     if a.reference == "calculix":
-        from fem.export import CcxNotFound
+        from fem.calculix.run import CcxNotFound
         from .crosscheck import run_calculix_validation
         try:
             return run_calculix_validation(a.case, a.positions, a.out, refine=a.refine, level=a.level,

@@ -116,8 +116,8 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
     it stopped. Prints a table, writes ``calculix.csv``, ``convergence.csv``, ``pressure_ladder.csv`` and
     ``calculix.png`` to ``out`` and returns 0 when all positions are within the issue's bounds, 1
     otherwise. Raises ``CaseError`` on a bad case or
-    position list and ``fem.export.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
-    from fem.export import ccx_path
+    position list and ``fem.calculix.run.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
+    from fem.calculix.run import ccx_path
     from .case import FIDELITIES, load_case
     from .errors import CaseError
     from .loaded import Fidelity, prepare

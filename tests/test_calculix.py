@@ -6,9 +6,9 @@ import shutil
 import numpy as np
 import pytest
 
-from fem.export import (CCX_INSTALL, CcxDeck, CcxNotFound, ContactLine, ContactPairSpec, DeckBody, _face_numbers,
-                        ccx_path, facets_near_lines, write_deck)
-from fem.solids import SegmentMesh
+from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, _face_numbers, write_deck
+from fem.calculix.run import CCX_INSTALL, CcxNotFound, ccx_path
+from fem.solids import ContactLine, SegmentMesh, facets_near_lines
 
 needs_ccx = pytest.mark.skipif(shutil.which("ccx") is None, reason=f"CalculiX missing: {CCX_INSTALL}")
 
@@ -126,7 +126,7 @@ def test_focus_refines_only_its_window_of_the_contact_line(fzg_lm):
     """The pressure ladder's focus zone: elements of the focus size in the mid-face window of the contact
     line, the band's size elsewhere along the same line."""
     from fem.compliance import segment_spec
-    from fem.export import build_refined_segment
+    from fem.solids import build_refined_segment
     from geometry.pair import rotation_z
     from ltca.calculix import Focus, _window, contact_lines
     model = fzg_lm.model

@@ -42,7 +42,7 @@ def test_pitch_point_matches_hertz_with_coarse_flank_mesh(fzg_lm, fzg_case):
     assert abs(hc.p0_error) < 0.03, hc
     assert abs(hc.b_error) < 0.05, hc
     # the line load is not uniform over the face: the tooth's free end faces make the ends more
-    # compliant, so they carry less (CalculiX shows the same, fem/export; the ends' share was inverted
+    # compliant, so they carry less (CalculiX shows the same, fem/calculix; the ends' share was inverted
     # before the near field's half-space part was matched to the FE patch loads)
     print(f"line load over the face: min {hc.line_load_min:.1f}, mid {hc.line_load_mid:.1f}, "
           f"max {hc.line_load_max:.1f} N/mm (mean {hc.line_load_mean:.1f}); p0 {hc.p0_error:+.4f}, "

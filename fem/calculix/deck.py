@@ -8,8 +8,8 @@ surface-to-surface penalty contact (``*CONTACT PAIR, TYPE=SURFACE TO SURFACE``, 
 pressure-overclosure law) joins named slave facet groups to master groups (CalculiX 2.20 keywords;
 G. Dhondt, *CalculiX CrunchiX User's Manual*).
 
-The segments with contact-line refinement are meshed by :mod:`fem.contact_refinement`, ``ccx`` is run and
-its results read back by :mod:`fem.ccx_run`; both modules' names are re-exported here.
+The segments with contact-line refinement are meshed by :mod:`fem.solids.refinement`, ``ccx`` is run and
+its results read back by :mod:`fem.calculix.run`.
 
 Units: mm, N, MPa, rad. Point arrays are (n, 3).
 """
@@ -21,13 +21,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .ccx_run import CCX_INSTALL, CcxFailed, CcxNotFound, CcxResult, ccx_path, read_results, run_ccx
-from .ccx_run import _dat_blocks as _dat_blocks, _frd_contact as _frd_contact
-from .solids.refinement import ContactLine, build_refined_segment, facets_near_lines
-from .solids.spec import SegmentMesh
+from ..solids.spec import SegmentMesh
 
-__all__ = ["ContactLine", "build_refined_segment", "facets_near_lines", "DeckBody", "ContactPairSpec", "CcxDeck", "write_deck",
-           "CcxResult", "read_results", "run_ccx", "ccx_path", "CCX_INSTALL", "CcxNotFound", "CcxFailed"]
+__all__ = ["DeckBody", "ContactPairSpec", "CcxDeck", "write_deck"]
 
 # C3D10 faces (CalculiX / Abaqus numbering S1..S4) by the vertex each one omits
 _FACE_OF_MISSING_VERTEX = np.array([3, 4, 2, 1])   # missing 0 -> S3 (2-4-3), 1 -> S4, 2 -> S2, 3 -> S1

@@ -1,4 +1,4 @@
-"""Running the CalculiX solver ``ccx`` on a deck of :mod:`fem.export` and reading its results back.
+"""Running the CalculiX solver ``ccx`` on a deck of :mod:`fem.calculix.deck` and reading its results back.
 
 The results read are the rotation of the driven axis (``*NODE PRINT`` of the rotation node), the total
 reaction at the fixed nodes, the total contact force of each pair (``*CONTACT PRINT``, from ``job.dat``)
