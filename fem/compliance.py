@@ -12,7 +12,7 @@ The regular part R(d) is the FE response minus the half-space (Boussinesq) respo
 patch load at the *same* read point, so whatever the FE sees of the patch's spreading and of the
 bilinear grid interpolation cancels; it is read at two depths where the coarse mesh is accurate and
 extrapolated linearly to the flank (it varies linearly with depth there: flank curvature, finite tooth).
-The contact cells add their own half-space response at the flank (:mod:`ltca.loaded`). Checked against
+The contact cells add their own half-space response at the flank (:mod:`ltca.cylindrical.contact_cells`). Checked against
 CalculiX (issue 4): a single read depth without the matched subtraction made the FZG pitch-point TE
 3 % too stiff; this split converges to it with the flank element size.
 

@@ -56,9 +56,9 @@ def backlash_from_pair(spec: dict, result: BudgetResult) -> list:
 
     from .backlash import backlash_curves
     from .case import load_case
-    from .model import build_model
-    from .run import cycle_rolls
-    from .tca import ARCSEC_PER_RAD, double_flank_tca
+    from .cylindrical.model import build_model
+    from .cylindrical.run import cycle_rolls
+    from .cylindrical.tca import ARCSEC_PER_RAD, double_flank_tca
     case = load_case(spec["pair_case"])
     case = dataclasses.replace(
         case, pinion=dataclasses.replace(case.pinion, thickness_allowance=spec["allowance"][0]),

@@ -9,7 +9,7 @@ axis under the case torque. The unloaded flanks touch along a line at zero gap, 
 rotation undetermined before contact closes; the pinion is therefore placed a tiny rotation ``delta``
 (``preload`` of overclosure) into the gear, and ``delta`` is added back to the rotation read.
 
-Compared per position with ours (:func:`ltca.loaded.solve_position`): loaded TE (unloaded part removed,
+Compared per position with ours (:func:`ltca.cylindrical.loaded.solve_position`): loaded TE (unloaded part removed,
 arcsec of the gear), load share per pinion tooth, peak pressure, wall time. The validation command that
 runs the comparison, with CalculiX's own convergence ladders, is :mod:`ltca.crosscheck`.
 """
@@ -31,8 +31,9 @@ from fem.solids import ContactLine, build_refined_segment, facets_near_lines
 from fem.compliance import segment_spec
 from geometry.pair import rotation_z
 
-from .loaded import LoadedModel, solve_position
-from .tca import ARCSEC_PER_RAD, first_contact, flank_gaps
+from .cylindrical.loaded_model import LoadedModel
+from .cylindrical.loaded import solve_position
+from .cylindrical.tca import ARCSEC_PER_RAD, first_contact, flank_gaps
 
 __all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "richardson", "contact_lines",
            "solve_ccx", "solve_ours", "narrowest_contact"]

@@ -15,7 +15,7 @@ __all__ = ["main", "build_parser"]
 
 
 def _cmd_run(a: argparse.Namespace) -> int:
-    from .run import run_case
+    from .cylindrical.run import run_case
     run_case(a.case, out=a.out, fidelity=a.fidelity, positions=a.positions, progress=not a.quiet,
              cache=a.cache)
     return 0
@@ -27,7 +27,7 @@ def _cmd_tca(a: argparse.Namespace) -> int:
         from .bevel import run_bevel_tca
         run_bevel_tca(a.case, out=a.out)
         return 0
-    from .run import run_tca
+    from .cylindrical.run import run_tca
     run_tca(a.case, out=a.out, positions=a.positions)
     return 0
 

@@ -13,10 +13,11 @@ from pathlib import Path
 import numpy as np
 
 from .case import FIDELITIES, load_case
-from .loaded import Fidelity, prepare, te_arcsec
-from .model import build_model
-from .results import write_json
-from .run import analyse, cycle_rolls
+from .cylindrical.loaded_model import Fidelity, prepare
+from .cylindrical.loaded import te_arcsec
+from .cylindrical.model import build_model
+from .cylindrical.results import write_json
+from .cylindrical.run import analyse, cycle_rolls
 
 __all__ = ["LADDER", "run_convergence"]
 

@@ -27,7 +27,7 @@ import numpy as np
 
 from .calculix import (Focus, PositionComparison, ccx_ladder, narrowest_contact, penalty_slope, richardson,
                        solve_ccx, solve_ours)
-from .loaded import LoadedModel
+from .cylindrical.loaded_model import LoadedModel
 
 __all__ = ["BOUNDS", "BOUNDS_HELICAL_TE", "PressureLadder", "pressure_ladder", "run_calculix_validation"]
 
@@ -120,9 +120,9 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
     from fem.calculix.run import ccx_path
     from .case import FIDELITIES, load_case
     from .errors import CaseError
-    from .loaded import Fidelity, prepare
-    from .model import build_model
-    from .run import cycle_rolls
+    from .cylindrical.loaded_model import Fidelity, prepare
+    from .cylindrical.model import build_model
+    from .cylindrical.run import cycle_rolls
     ccx_path()
     say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
     if refine < 0 or refine > 4:

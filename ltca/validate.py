@@ -13,8 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .loaded import LoadedModel, hertz_line, solve_position
-from .model import PairModel
+from .cylindrical.loaded_model import LoadedModel, hertz_line
+from .cylindrical.loaded import solve_position
+from .cylindrical.model import PairModel
 
 __all__ = ["HertzCheck", "pitch_point_hertz", "iso6336_stiffness", "run_validate", "fit_elliptic"]
 
@@ -114,10 +115,10 @@ def run_validate(out: str = "out/validate", progress: bool = True) -> int:
 
     (The CalculiX cross-check is ``ltca.crosscheck.run_calculix_validation``.)"""
     from .case import FIDELITIES, load_case
-    from .loaded import Fidelity, prepare
-    from .model import build_model
-    from .run import cycle_rolls
-    from .tca import unloaded_tca
+    from .cylindrical.loaded_model import Fidelity, prepare
+    from .cylindrical.model import build_model
+    from .cylindrical.run import cycle_rolls
+    from .cylindrical.tca import unloaded_tca
     root = Path(__file__).resolve().parent.parent / "cases"
     rows = []
     t0 = time.perf_counter()
@@ -147,7 +148,7 @@ def run_validate(out: str = "out/validate", progress: bool = True) -> int:
             rows.append(("pitch point line load min .. max over the face [N/mm]", hc.line_load_min,
                          f"max {hc.line_load_max:.1f} (mid-face {hc.line_load_mid:.1f})", info, 0.0))
             res = solve_position(lm, 0.0, case.torques[0])
-            from .results import mesh_stiffness
+            from .cylindrical.results import mesh_stiffness
             c = float(mesh_stiffness(lm, res.theta, res.theta0, case.torques[0]))
             cp, cth = iso6336_stiffness(model)
             rows.append(("single-pair stiffness [N/(mm um)]", c, f"[{0.8 * cp:.2f}, {1.2 * cth:.2f}] (ISO c'={cp:.2f},"

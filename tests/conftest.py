@@ -20,7 +20,7 @@ def fzg_case():
 
 @pytest.fixture(scope="session")
 def fzg_model(fzg_case):
-    from ltca.model import build_model
+    from ltca.cylindrical.model import build_model
     return build_model(fzg_case)
 
 
@@ -28,8 +28,8 @@ def fzg_model(fzg_case):
 def fzg_lm(fzg_case, fzg_model, tmp_path_factory):
     """FZG C14 at the default fidelity (flank elements 0.3 m = 1.35 mm), both bodies' compliance."""
     from ltca.case import FIDELITIES
-    from ltca.loaded import Fidelity, prepare
-    from ltca.run import cycle_rolls
+    from ltca.cylindrical.loaded_model import Fidelity, prepare
+    from ltca.cylindrical.run import cycle_rolls
     fid = Fidelity.from_preset(FIDELITIES["default"], fzg_case.module)
     return prepare(fzg_model, fid, cycle_rolls(30, 16), fzg_case.torques[0],
                    cache_dir=tmp_path_factory.mktemp("mesh"))
@@ -37,6 +37,6 @@ def fzg_lm(fzg_case, fzg_model, tmp_path_factory):
 
 def with_case(lm, **changes):
     """The same bodies (compliance) with another case: new gaps, same FE."""
-    from ltca.model import build_model
+    from ltca.cylindrical.model import build_model
     case = dataclasses.replace(lm.model.case, **changes)
     return dataclasses.replace(lm, model=build_model(case))

@@ -116,7 +116,7 @@ def test_double_contact_against_calculix(fzg_lm, tmp_path):
 def test_narrowest_half_width_is_the_hertz_width(fzg_lm):
     """The table's CalculiX resolution (elements per half-width) uses our contact width: ~Hertz b."""
     from ltca.calculix import narrowest_contact
-    from ltca.loaded import solve_position
+    from ltca.cylindrical.loaded import solve_position
     res = solve_position(fzg_lm, 0.0, fzg_lm.model.case.torques[0])
     b = narrowest_contact(res)[1]
     assert abs(b - 0.1995) < res.ds          # shared/reference/hertz.md: 199.5 um at the pitch point

@@ -13,9 +13,9 @@ import pytest
 
 from conftest import CASES, with_case
 from ltca.case import Modifications, load_case
-from ltca.model import build_model, working_centre_distance
-from ltca.run import analyse, cycle_rolls
-from ltca.tca import ARCSEC_PER_RAD, double_flank_tca
+from ltca.cylindrical.model import build_model, working_centre_distance
+from ltca.cylindrical.run import analyse, cycle_rolls
+from ltca.cylindrical.tca import ARCSEC_PER_RAD, double_flank_tca
 
 
 def test_backlash_of_thinned_teeth_matches_closed_form():
@@ -93,7 +93,7 @@ def test_load_moves_to_the_pair_with_the_smaller_gap(fzg_lm, fzg_case):
     lm = with_case(fzg_lm, pinion=dataclasses.replace(fzg_case.pinion, modifications=mods))
     pos = dict(mods.pitch_errors)
     roll = np.radians(-9.0)                             # double contact of model teeth 0 and 1
-    from ltca.loaded import solve_position
+    from ltca.cylindrical.loaded import solve_position
     nominal = solve_position(fzg_lm, roll, T)
     for cycle in (2, 11):                               # errors rising / falling between the two teeth
         r = solve_position(lm, roll, T, cycle=cycle)

@@ -7,10 +7,11 @@ import numpy as np
 import pytest
 
 from conftest import REFERENCE
-from ltca.loaded import hertz_line, solve_position
-from ltca.results import mesh_stiffness
-from ltca.run import cycle_rolls
-from ltca.tca import unloaded_tca
+from ltca.cylindrical.loaded_model import hertz_line
+from ltca.cylindrical.loaded import solve_position
+from ltca.cylindrical.results import mesh_stiffness
+from ltca.cylindrical.run import cycle_rolls
+from ltca.cylindrical.tca import unloaded_tca
 from ltca.validate import iso6336_stiffness, pitch_point_hertz
 
 
@@ -82,7 +83,7 @@ def test_iso6336_constants_reproduce_hand_calculation(fzg_model):
 def test_pitch_point_without_near_field_is_far_off(fzg_case, fzg_model, tmp_path):
     """The same FE mesh read at the flank itself (no half-space near field) cannot resolve Hertz."""
     from ltca.case import FIDELITIES
-    from ltca.loaded import Fidelity, prepare
+    from ltca.cylindrical.loaded_model import Fidelity, prepare
     fid = Fidelity.from_preset(FIDELITIES["default"] | {"near_field": False}, fzg_case.module)
     lm = prepare(fzg_model, fid, cycle_rolls(30, 16), fzg_case.torques[0], cache_dir=tmp_path)
     hc = pitch_point_hertz(lm, fzg_case.torques[0])
@@ -127,7 +128,8 @@ def test_loaded_te_does_not_depend_on_the_read_depth(fzg_case, fzg_model, tmp_pa
     (default 1.01) within 0.5 %. The earlier split (cell half-space subtracted from a patch-loaded FE, one
     depth) moved by ~1.2 % over the same range and was 3 % stiffer than CalculiX (issue 4)."""
     from ltca.case import FIDELITIES
-    from ltca.loaded import Fidelity, prepare, te_arcsec
+    from ltca.cylindrical.loaded_model import Fidelity, prepare
+    from ltca.cylindrical.loaded import te_arcsec
     te = []
     for d in (0.7, 1.35):
         fid = Fidelity.from_preset(FIDELITIES["default"], fzg_case.module, depth=d)

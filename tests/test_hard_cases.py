@@ -9,8 +9,8 @@ import pytest
 from conftest import with_case
 from geometry.cylindrical import arc_length
 from ltca.case import Modifications
-from ltca.loaded import solve_position
-from ltca.run import analyse, cycle_rolls
+from ltca.cylindrical.loaded import solve_position
+from ltca.cylindrical.run import analyse, cycle_rolls
 
 
 def _finite(results):

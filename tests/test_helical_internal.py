@@ -9,9 +9,9 @@ import pytest
 
 from conftest import CASES
 from ltca.case import FIDELITIES, load_case
-from ltca.loaded import Fidelity, prepare
-from ltca.model import build_model
-from ltca.run import analyse, cycle_rolls
+from ltca.cylindrical.loaded_model import Fidelity, prepare
+from ltca.cylindrical.model import build_model
+from ltca.cylindrical.run import analyse, cycle_rolls
 from ltca.validate import pitch_point_hertz
 
 

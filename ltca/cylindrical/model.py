@@ -16,8 +16,8 @@ from geometry.shaper import ShaperCutter, generate_by_shaper
 from geometry.modification import FlankModification, profile_slope_from_roll_ratio
 from geometry.pair import CylindricalPair
 
-from .case import CylindricalCase, Member
-from .errors import CaseError
+from ..case import CylindricalCase, Member
+from ..errors import CaseError
 
 __all__ = ["PairModel", "build_model", "working_centre_distance"]
 

@@ -1,4 +1,4 @@
-"""Result records of a loaded analysis: the xarray dataset (netCDF) and the headline summary.
+"""Result records of a cylindrical loaded analysis: the xarray dataset (netCDF) and the headline summary.
 
 Names are the same everywhere: the dataset variables, the summary keys and the plot labels.
 Units: engineer's units (arcsec, MPa, N, deg, mm) at this edge.
@@ -11,7 +11,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .loaded import LoadedModel, PositionResult, te_arcsec
+from .loaded import PositionResult, te_arcsec
+from .loaded_model import LoadedModel
 
 __all__ = ["position_dataset", "summary", "write_json", "pressure_on_lattice", "mesh_stiffness"]
 

@@ -5,122 +5,24 @@ slice and tooth, centred on the unloaded contact line and a few Hertz half-width
 come from the separation field (both members' micro-geometry and errors included), their compliance
 from the two bodies' FE grids (bilinear interpolation) plus the half-space near field, and the
 complementarity problem with torque balance gives the cell forces and the loaded rotation. The cells
-and their contact problem are built in :mod:`ltca.contact_cells`.
+and their contact problem are built in :mod:`ltca.cylindrical.contact_cells`; the model with both bodies'
+compliance in :mod:`ltca.cylindrical.loaded_model`.
 """
 from __future__ import annotations
 
-import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from fem.compliance import BodyCompliance, ComplianceSpec, body_compliance
+from fem.compliance import BodyCompliance
 from fem.contact import ContactNotConverged, solve_contact
-from geometry.cylindrical import arc_length
 
+from ..errors import ConvergenceError
 from .contact_cells import contact_strips, contact_system
-from .errors import ConvergenceError
-from .model import PairModel
-from .tca import ARCSEC_PER_RAD, first_contact, flank_gaps, unloaded_tca
+from .loaded_model import LoadedModel
+from .tca import ARCSEC_PER_RAD, first_contact
 
-__all__ = ["Fidelity", "LoadedModel", "PositionResult", "prepare", "solve_position", "hertz_line", "weights_of",
-           "te_arcsec"]
-
-
-@dataclass(frozen=True)
-class Fidelity:
-    """The knobs of one analysis (lengths in mm)."""
-    h_flank: float          # FE element size at the flanks
-    h_body: float           # FE element size far from the teeth
-    grid: tuple[int, int]   # compliance grid per loaded flank (profile, face)
-    cells_per_b: float      # contact cells per nominal Hertz half-width (profile direction)
-    slices: int             # contact cells along the face
-    near_field: bool        # half-space near-field correction on/off
-    depth: float            # read depth d of the FE regular part (and 2d), mm; default 0.75 h_flank
-    window: float = 3.0     # strip half-width in nominal Hertz half-widths
-
-    @staticmethod
-    def from_preset(params: dict, module: float, **override) -> "Fidelity":
-        p = dict(params)
-        p.update({k: v for k, v in override.items() if v is not None})
-        h = p["h_flank"] * module
-        return Fidelity(h_flank=h, h_body=p["h_body"] * module, grid=tuple(p["grid"]),
-                        cells_per_b=p["cells_per_b"], slices=p["slices"], near_field=p["near_field"],
-                        depth=p.get("depth", 0.75 * h) if p["near_field"] else 0.0, window=p.get("window", 2.0))
-
-
-def hertz_line(w: float, R: float, E: float, nu: float) -> tuple[float, float]:
-    """Hertz line contact of two equal materials: half-width b (mm) and peak p0 (MPa) for load w (N/mm).
-
-    b = sqrt(4 w R / (pi E*)), p0 = 2 w / (pi b), 1/E* = 2 (1 - nu^2)/E (Johnson, Contact Mechanics, 4.2).
-    """
-    Es = E / (2 * (1 - nu ** 2))
-    b = np.sqrt(4 * w * R / (np.pi * Es))
-    return float(b), float(2 * w / (np.pi * b))
-
-
-@dataclass
-class LoadedModel:
-    """The pair with both bodies' compliance, ready for any number of positions and torques."""
-    model: PairModel
-    fid: Fidelity
-    teeth1: tuple[int, ...]
-    teeth2: tuple[int, ...]
-    body1: BodyCompliance
-    body2: BodyCompliance
-    b_nom: float              # Hertz half-width of the nominal line load at torque_nom, mm
-    R_nom: float
-    torque_nom: float         # N mm
-    timings: dict = field(default_factory=dict)
-
-    def half_width(self, torque: float) -> float:
-        """Nominal Hertz half-width at another torque: b grows as sqrt(load) (Johnson 4.2)."""
-        return self.b_nom * np.sqrt(torque / self.torque_nom)
-
-
-def _teeth_in_mesh(model: PairModel, rolls: np.ndarray, cap: float):
-    tca = unloaded_tca(model, rolls, teeth=range(-3, 4), ns=120, nz=5)
-    near = np.isfinite(tca.min_gap) & (tca.min_gap < cap)
-    teeth1 = tuple(int(k) for k in tca.teeth[near.any(axis=0)])
-    s_lo = arc_length(model.pinion_range()[0], model.pinion.r_base)
-    s_hi = arc_length(model.pinion_range()[1], model.pinion.r_base)
-    g2 = set()
-    for roll in rolls[:: max(1, len(rolls) // 8)].tolist() + [rolls[-1]]:
-        for k in teeth1:
-            fg = flank_gaps(model, model.phi_pitch - roll, k, np.linspace(s_lo, s_hi, 60), 0.0)
-            g2.update(int(t) for t in np.unique(fg.gear_tooth[np.isfinite(fg.gap) & (fg.gap < 2 * cap)]))
-    return tca, teeth1, tuple(sorted(g2))
-
-
-def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, cache_dir=None,
-            progress=None) -> LoadedModel:
-    """Choose the teeth in mesh over ``rolls`` and compute both bodies' compliance (the costly step)."""
-    say = progress or (lambda m: None)
-    case = model.case
-    t0 = time.perf_counter()
-    p1, p2 = model.pinion, model.gear
-    b = model.face_width
-    w_nom = torque / (p1.r_base * b)
-    rho1 = p1.r_base * np.tan(model.pair.alpha_w)
-    rho2 = p2.r_base * np.tan(model.pair.alpha_w)
-    R_nom = 1.0 / (1 / rho1 - 1 / rho2) if p2.internal else 1.0 / (1 / rho1 + 1 / rho2)
-    R_nom /= np.cos(p1.beta_b)
-    b_nom, _ = hertz_line(w_nom * np.cos(p1.beta_b), R_nom, case.young, case.poisson)
-    # gaps below the expected deflection (ISO c' ~ 14 N/(mm um)) with a margin can close under load
-    cap = 3.0 * w_nom / 14.0e3 + 0.01
-    _, teeth1, teeth2 = _teeth_in_mesh(model, rolls, cap)
-    say(f"teeth in mesh: pinion {list(teeth1)}, gear {list(teeth2)}; modelled with one neighbour each side")
-    timings = {"tca": time.perf_counter() - t0}
-
-    def spec(teeth, side, r_range, r_bore):
-        return ComplianceSpec(teeth=tuple(range(min(teeth) - 1, max(teeth) + 2)), loaded=teeth, side=side,
-                              r_range=r_range, grid=fid.grid, face_width=b, r_bore=r_bore, h_flank=fid.h_flank,
-                              h_body=fid.h_body, depth=fid.depth, young=case.young, poisson=case.poisson)
-    body1 = body_compliance(p1, spec(teeth1, +1, model.pinion_range(), model.r_bore1), cache_dir, say)
-    body2 = body_compliance(p2, spec(teeth2, model.gear_side, model.gear_range(), model.r_bore2), cache_dir, say)
-    for name in ("mesh", "assembly", "factorisation", "setup", "solves"):
-        timings[name] = body1.timings.get(name, 0) + body2.timings.get(name, 0)
-    return LoadedModel(model, fid, teeth1, teeth2, body1, body2, b_nom, R_nom, torque, timings)
+__all__ = ["PositionResult", "solve_position", "weights_of", "te_arcsec"]
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,4 @@
-"""Plots (PNG) and the ParaView file (VTU) of a loaded analysis."""
+"""Plots (PNG) and the ParaView file (VTU) of a cylindrical loaded analysis."""
 from __future__ import annotations
 
 from pathlib import Path

@@ -4,22 +4,19 @@ The cells are narrow strips on the pinion's driving flank, one per face slice an
 unloaded contact line and a few Hertz half-widths wide, on a lattice of the flank that follows that line
 (:func:`contact_strips`). :func:`contact_system` gives their gaps from the separation field (both members'
 micro-geometry and errors included) and their compliance from the two bodies' FE grids (bilinear
-interpolation) plus the half-space near field (:func:`near_field_block`); :func:`ltca.loaded.solve_position`
+interpolation) plus the half-space near field (:func:`near_field_block`); :func:`ltca.cylindrical.loaded.solve_position`
 solves the complementarity problem on it.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from geometry.cylindrical import arc_length, flank_point_normal
 
+from .loaded_model import LoadedModel
 from .tca import flank_gaps
-
-if TYPE_CHECKING:
-    from .loaded import LoadedModel
 
 __all__ = ["ContactSystem", "contact_strips", "contact_system", "flank_tangents", "near_field_block"]
 

@@ -8,11 +8,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .case import FIDELITIES, load_case
-from .errors import CaseError
+from ..case import FIDELITIES, load_case
+from ..errors import CaseError
 from geometry.pair import rotation_z
 
-from .loaded import Fidelity, LoadedModel, PositionResult, prepare, solve_position, weights_of
+from .loaded import PositionResult, solve_position, weights_of
+from .loaded_model import Fidelity, LoadedModel, prepare
 from .model import build_model
 from .results import position_dataset, summary, write_json
 from .tca import ARCSEC_PER_RAD, unloaded_tca
