@@ -4,5 +4,5 @@
 bodies' compliance once), ``contact_cells`` and ``loaded`` (the contact of one position), ``results`` and
 ``report`` (dataset, summary, plots), ``run`` (``ltca run`` / ``ltca tca``).
 
-Imports geometry, fem, and ltca.case / ltca.errors; no other analysis subpackage.
+Imports geometry, fem, and ltca.case / ltca.errors / ltca.results; no other analysis subpackage.
 """

@@ -5,16 +5,13 @@ Units: engineer's units (arcsec, MPa, N, deg, mm) at this edge.
 """
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 import numpy as np
 import xarray as xr
 
 from .loaded import PositionResult, te_arcsec
 from .loaded_model import LoadedModel
 
-__all__ = ["position_dataset", "summary", "write_json", "pressure_on_lattice", "mesh_stiffness"]
+__all__ = ["position_dataset", "summary", "pressure_on_lattice", "mesh_stiffness"]
 
 
 def pressure_on_lattice(lm: LoadedModel, res: PositionResult) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -108,10 +105,3 @@ def summary(lm: LoadedModel, ds: xr.Dataset, timings: dict, converged: bool) -> 
         "fidelity": {k: (list(v) if isinstance(v, tuple) else v) for k, v in lm.fid.__dict__.items()},
         "timings_s": {k: f(v) for k, v in timings.items()},
     }
-
-
-def write_json(path: Path, data: dict) -> None:
-    """Write JSON atomically (temporary file, then rename)."""
-    tmp = Path(str(path) + ".tmp")
-    tmp.write_text(json.dumps(data, indent=2))
-    tmp.replace(path)

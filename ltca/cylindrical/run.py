@@ -10,12 +10,13 @@ import numpy as np
 
 from ..case import FIDELITIES, load_case
 from ..errors import CaseError
+from ..results import write_json
 from geometry.pair import rotation_z
 
 from .loaded import PositionResult, solve_position, weights_of
 from .loaded_model import Fidelity, LoadedModel, prepare
 from .model import build_model
-from .results import position_dataset, summary, write_json
+from .results import position_dataset, summary
 from .tca import ARCSEC_PER_RAD, unloaded_tca
 
 __all__ = ["run_case", "run_tca", "cycle_rolls", "analyse"]
