@@ -24,7 +24,7 @@ def _cmd_run(a: argparse.Namespace) -> int:
 def _cmd_tca(a: argparse.Namespace) -> int:
     from .case import read_toml
     if "bevel" in read_toml(a.case):
-        from .bevel import run_bevel_tca
+        from .bevel.run import run_bevel_tca
         run_bevel_tca(a.case, out=a.out)
         return 0
     from .cylindrical.run import run_tca

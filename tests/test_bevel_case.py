@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from ltca.bevel import bevel_benchmark, run_bevel_tca
+from ltca.bevel.run import bevel_benchmark, run_bevel_tca
 from ltca.errors import CaseError
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.toml"

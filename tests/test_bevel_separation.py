@@ -11,7 +11,7 @@ from geometry.bevel.design import synthesize_pinion
 from geometry.bevel.generation import standard_gear_cut
 from geometry.bevel.separation import separation_tca
 from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca
-from ltca.bevel import load_bevel_case
+from ltca.bevel.case import load_bevel_case
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.toml"
 
