@@ -60,13 +60,13 @@ def _cmd_bench(a: argparse.Namespace) -> int:
 
 
 def _cmd_budget(a: argparse.Namespace) -> int:
-    from .budget import run_budget
+    from .drivetrain.budget import run_budget
     run_budget(a.case, a.out)
     return 0
 
 
 def _cmd_chain(a: argparse.Namespace) -> int:
-    from .chain import run_chain
+    from .drivetrain.chain import run_chain
     run_chain(a.case, a.out)
     return 0
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ltca.backlash import backlash_curves, plot_backlash, unloaded_from_loaded
-from ltca.budget import (DEG, BallSplineMember, DriveTrain, MeshMember, TorsionMember,
-                         compute_budget, load_budget_case, run_budget)
+from ltca.drivetrain.backlash import backlash_curves, plot_backlash, unloaded_from_loaded
+from ltca.drivetrain.budget import (DEG, BallSplineMember, DriveTrain, MeshMember, TorsionMember, compute_budget,
+                                    load_budget_case, run_budget)
 from ltca.errors import CaseError
 
 CASE = "cases/budget_wang.toml"

@@ -38,7 +38,7 @@ def test_backlash_of_thinned_teeth_matches_closed_form():
 
 
 def test_budget_case_writes_backlash_curves(tmp_path):
-    from ltca.budget import run_budget
+    from ltca.drivetrain.budget import run_budget
     result = run_budget(str(CASES / "budget_wang.toml"), str(tmp_path))
     data = np.genfromtxt(tmp_path / "backlash.csv", delimiter=",", names=True)
     # 30 + 30 um thinning of FZG C14: (0.03/36 * 16/24 + 0.03/54) rad = 229.19 arcsec less 0.25 arcsec for
@@ -57,7 +57,7 @@ def _pitch_error_mods():
 
 def test_pitch_error_case_follows_from_the_seed_002_indexing_chain():
     from geometry.errors import tooth_positions, worst_case_pitch_deviations
-    from ltca.chain import evaluate_chain, load_chain_case, pitch_deviation_bound
+    from ltca.drivetrain.chain import evaluate_chain, load_chain_case, pitch_deviation_bound
     indexing_z1 = next(c for c in load_chain_case(str(CASES / "chain_zftkk250.toml")) if "index" in c.name.lower()
                        and c.name.lower().rstrip().endswith("z1"))
     bound = pitch_deviation_bound(evaluate_chain(indexing_z1))
@@ -107,7 +107,7 @@ def test_load_moves_to_the_pair_with_the_smaller_gap(fzg_lm, fzg_case):
 def test_roll_ratio_error_shifts_the_bearing_pattern(fzg_lm, fzg_case):
     from geometry.modification import profile_slope_from_roll_ratio
     T = fzg_case.torques[0]
-    eps = 8.0e-4                     # envelope chain extreme of seed 002 (ltca.chain.roll_ratio_error: 0.99920)
+    eps = 8.0e-4          # envelope chain extreme of seed 002 (ltca.drivetrain.chain.roll_ratio_error: 0.99920)
     p1 = fzg_lm.model.pinion
     fH = profile_slope_from_roll_ratio(eps, p1.r_base, p1.r_form_right, p1.r_tip)
     assert fH == pytest.approx(eps * (np.sqrt(p1.r_tip ** 2 - p1.r_base ** 2) -

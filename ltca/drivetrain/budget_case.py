@@ -1,8 +1,8 @@
 """Budget case file (TOML): ``[budget]`` torques and initial backlash, ``[[member]]`` list, optional ``[backlash]``.
 
 Every field is checked; a missing, mistyped, out-of-range or unknown one is a :class:`ltca.errors.CaseError`
-naming it. The member models are in :mod:`ltca.budget_model`; ``_num`` and ``_known`` also serve
-:mod:`ltca.chain_case`.
+naming it. The member models are in :mod:`ltca.drivetrain.budget_model`; ``_num`` and ``_known`` also serve
+:mod:`ltca.drivetrain.chain_case`.
 """
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ import os
 
 import numpy as np
 
-from ltca.budget_model import (DEG, BallSplineMember, DriveTrain, MeshMember, Member, ShaftMember,
-                               TorsionMember)
+from ltca.drivetrain.budget_model import (DEG, BallSplineMember, DriveTrain, MeshMember, Member, ShaftMember,
+                                          TorsionMember)
 from ltca.errors import CaseError
 
 __all__ = ["load_budget_case", "load_backlash_table"]
@@ -89,7 +89,7 @@ def load_budget_case(path: str) -> tuple[DriveTrain, np.ndarray]:
     CaseError
         On a missing, mistyped, out-of-range or unknown field.
     """
-    from .case import read_toml
+    from ..case import read_toml
     doc = read_toml(path)
     try:
         _known(doc, {"budget", "member", "backlash"}, "case")
@@ -116,7 +116,7 @@ def load_budget_case(path: str) -> tuple[DriveTrain, np.ndarray]:
 
 def load_backlash_table(path: str) -> dict | None:
     """The optional ``[backlash]`` table: a cylindrical pair whose double-flank TE gives the backlash curve."""
-    from .case import read_toml
+    from ..case import read_toml
     tab = read_toml(path).get("backlash")
     if tab is None:
         return None

@@ -9,7 +9,7 @@ delta_k (Eq. 20-21)::
     dphi_b^F = dphi_b + delta_k        (21)
 
 so the loaded curves are separated by backlash + 2 delta_k, and the unloaded curves are recovered from
-measured loaded ones by shifting them back. ``delta_k`` comes from :mod:`ltca.budget` (the total
+measured loaded ones by shifting them back. ``delta_k`` comes from :mod:`ltca.drivetrain.budget` (the total
 deflection at the load, rad at the same shaft as the TE).
 
 Sign convention: TE in rad of the driven member, drive flank in contact gives ``te_drive``, coast flank

@@ -1,6 +1,6 @@
 """Transmission-ratio error of a machine's kinematic chains (seed 002): the ``ltca chain`` command.
 
-The method and the chains are in :mod:`ltca.chain_model`, the case file in :mod:`ltca.chain_case`;
+The method and the chains are in :mod:`ltca.drivetrain.chain_model`, the case file in :mod:`ltca.drivetrain.chain_case`;
 their public names are importable from here as well.
 """
 from __future__ import annotations
@@ -8,9 +8,9 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
-from ltca.chain_case import load_chain_case
-from ltca.chain_model import (Chain, ChainElement, ChainEvaluation, RollRatioError, evaluate_chain,
-                              pitch_deviation_bound, roll_ratio_error)
+from ltca.drivetrain.chain_case import load_chain_case
+from ltca.drivetrain.chain_model import (Chain, ChainElement, ChainEvaluation, RollRatioError, evaluate_chain,
+                                         pitch_deviation_bound, roll_ratio_error)
 
 __all__ = ["ChainElement", "Chain", "ChainEvaluation", "evaluate_chain", "ChainResult",
            "load_chain_case", "run_chain", "pitch_deviation_bound", "RollRatioError", "roll_ratio_error"]

@@ -2,14 +2,14 @@
 
 Every field is checked, and each chain must close on its required ratio; otherwise a
 :class:`ltca.errors.CaseError` names the field. The chains and their evaluation are in
-:mod:`ltca.chain_model`.
+:mod:`ltca.drivetrain.chain_model`.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from ltca.budget_case import _known, _num
-from ltca.chain_model import DEG, LINKS, Chain, ChainElement, evaluate_chain
+from ltca.drivetrain.budget_case import _known, _num
+from ltca.drivetrain.chain_model import DEG, LINKS, Chain, ChainElement, evaluate_chain
 from ltca.errors import CaseError
 
 __all__ = ["load_chain_case"]
@@ -85,7 +85,7 @@ def load_chain_case(path: str) -> tuple[Chain, ...]:
     CaseError
         Naming the field on any bad, unknown or missing value, or a chain that does not close.
     """
-    from .case import read_toml
+    from ..case import read_toml
     doc = read_toml(path)
     try:
         _known(doc, {"machine", "workpiece", "chain"}, "case")

@@ -1,8 +1,8 @@
 """Drive-train stiffness and hysteresis budget (seed 003): the ``ltca budget`` command and its outputs.
 
 Table, CSV and plot of a :class:`BudgetResult`, and the backlash curve of a gear pair shifted by the
-budget (Eq. 20-21). The members and Eq. (19) are in :mod:`ltca.budget_model`, the case file in
-:mod:`ltca.budget_case`; their public names are importable from here as well.
+budget (Eq. 20-21). The members and Eq. (19) are in :mod:`ltca.drivetrain.budget_model`, the case file in
+:mod:`ltca.drivetrain.budget_case`; their public names are importable from here as well.
 """
 from __future__ import annotations
 
@@ -10,9 +10,9 @@ import os
 
 import numpy as np
 
-from ltca.budget_case import load_backlash_table, load_budget_case
-from ltca.budget_model import (DEG, BallSplineMember, BudgetResult, DriveTrain, MeshMember, Member,
-                               ShaftMember, TorsionMember, compute_budget)
+from ltca.drivetrain.budget_case import load_backlash_table, load_budget_case
+from ltca.drivetrain.budget_model import (DEG, BallSplineMember, BudgetResult, DriveTrain, MeshMember, Member,
+                                          ShaftMember, TorsionMember, compute_budget)
 
 __all__ = ["TorsionMember", "ShaftMember", "MeshMember", "BallSplineMember", "Member",
            "DriveTrain", "BudgetResult", "compute_budget", "load_budget_case", "plot_budget",
@@ -55,10 +55,10 @@ def backlash_from_pair(spec: dict, result: BudgetResult) -> list:
     import dataclasses
 
     from .backlash import backlash_curves
-    from .case import load_case
-    from .cylindrical.model import build_model
-    from .cylindrical.run import cycle_rolls
-    from .cylindrical.tca import ARCSEC_PER_RAD, double_flank_tca
+    from ..case import load_case
+    from ..cylindrical.model import build_model
+    from ..cylindrical.run import cycle_rolls
+    from ..cylindrical.tca import ARCSEC_PER_RAD, double_flank_tca
     case = load_case(spec["pair_case"])
     case = dataclasses.replace(
         case, pinion=dataclasses.replace(case.pinion, thickness_allowance=spec["allowance"][0]),
