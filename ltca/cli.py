@@ -33,7 +33,7 @@ def _cmd_tca(a: argparse.Namespace) -> int:
 
 
 def _cmd_convergence(a: argparse.Namespace) -> int:
-    from .convergence import run_convergence
+    from .verify.convergence import run_convergence
     run_convergence(a.case, out=a.out, positions=a.positions, progress=not a.quiet)
     return 0
 
@@ -41,7 +41,7 @@ def _cmd_convergence(a: argparse.Namespace) -> int:
 def _cmd_validate(a: argparse.Namespace) -> int:
     if a.reference == "calculix":
         from fem.calculix.run import CcxNotFound
-        from .crosscheck import run_calculix_validation
+        from .verify.crosscheck import run_calculix_validation
         try:
             return run_calculix_validation(a.case, a.positions, a.out, refine=a.refine, level=a.level,
                                            band_um=a.band, coarse_body=a.coarse_body, pressure=a.pressure_ladder,
@@ -49,12 +49,12 @@ def _cmd_validate(a: argparse.Namespace) -> int:
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
             return 2
-    from .validate import run_validate
+    from .verify.validate import run_validate
     return run_validate(out=a.out, progress=not a.quiet)
 
 
 def _cmd_bench(a: argparse.Namespace) -> int:
-    from .bench import run_bench
+    from .verify.bench import run_bench
     run_bench(a.case, repeat=a.repeat, positions=a.positions, fidelity=a.fidelity)
     return 0
 

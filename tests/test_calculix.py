@@ -78,7 +78,7 @@ def test_missing_ccx_names_the_install_command(monkeypatch):
 def test_bad_positions_are_case_errors(tmp_path):
     if shutil.which("ccx") is None:
         pytest.skip(f"CalculiX missing: {CCX_INSTALL}")
-    from ltca.crosscheck import run_calculix_validation
+    from ltca.verify.crosscheck import run_calculix_validation
     from ltca.errors import CaseError
     from conftest import CASES
     with pytest.raises(CaseError, match="positions"):
@@ -96,7 +96,7 @@ def test_double_contact_against_calculix(fzg_lm, tmp_path):
     the issue's bounds (3 %, 0.03); its contact pressure is not resolved at this size and is not compared
     (`ltca validate --reference calculix` does, on the refined ladder)."""
     import dataclasses
-    from ltca.calculix import ccx_ladder, solve_ccx, solve_ours
+    from ltca.verify.calculix import ccx_ladder, solve_ccx, solve_ours
     torque = fzg_lm.model.case.torques[0]
     roll = np.radians(-9.0)
     ours, _ = solve_ours(fzg_lm, roll, torque)
@@ -115,7 +115,7 @@ def test_double_contact_against_calculix(fzg_lm, tmp_path):
 
 def test_narrowest_half_width_is_the_hertz_width(fzg_lm):
     """The table's CalculiX resolution (elements per half-width) uses our contact width: ~Hertz b."""
-    from ltca.calculix import narrowest_contact
+    from ltca.verify.calculix import narrowest_contact
     from ltca.cylindrical.loaded import solve_position
     res = solve_position(fzg_lm, 0.0, fzg_lm.model.case.torques[0])
     b = narrowest_contact(res)[1]
@@ -128,7 +128,7 @@ def test_focus_refines_only_its_window_of_the_contact_line(fzg_lm):
     from fem.compliance import segment_spec
     from fem.solids import build_refined_segment
     from geometry.pair import rotation_z
-    from ltca.calculix import Focus, _window, contact_lines
+    from ltca.verify.calculix import Focus, _window, contact_lines
     model = fzg_lm.model
     phi1 = model.phi_pitch
     (k, P, N), = [ln for ln in contact_lines(fzg_lm, phi1, cap=0.01) if ln[0] == 0]

@@ -9,7 +9,7 @@ from conftest import CASES
 
 
 def test_convergence_ladder_reports_time_and_error(tmp_path, capsys):
-    from ltca.convergence import run_convergence
+    from ltca.verify.convergence import run_convergence
     ladder = [("coarse", "coarse", {}), ("coarse, contact cells x 2", "coarse", {"cells_per_b": 6, "slices": 12}),
               ("coarse (reference)", "coarse", {"cells_per_b": 8, "slices": 14})]
     rows = run_convergence(str(CASES / "fzg_c14.toml"), out=str(tmp_path), positions=4, progress=False,
@@ -26,7 +26,7 @@ def test_convergence_ladder_reports_time_and_error(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_validate_command_passes(tmp_path, capsys):
-    from ltca.validate import run_validate
+    from ltca.verify.validate import run_validate
     assert run_validate(out=str(tmp_path)) == 0
     out = capsys.readouterr().out
     assert "pitch point p0 with near field" in out

@@ -12,7 +12,7 @@ from ltca.cylindrical.loaded import solve_position
 from ltca.cylindrical.results import mesh_stiffness
 from ltca.cylindrical.run import cycle_rolls
 from ltca.cylindrical.tca import unloaded_tca
-from ltca.validate import iso6336_stiffness, pitch_point_hertz
+from ltca.verify.validate import iso6336_stiffness, pitch_point_hertz
 
 
 def reference(quantity: str) -> float:
@@ -99,7 +99,7 @@ def test_double_contact_pressures_match_local_hertz(fzg_lm, fzg_case, roll_deg):
     the near field must give the local Hertz pressure and width at both, whatever their load share.
     Curvature radii of involutes at the contact: rho1 = sqrt(2 r_b1 s), rho2 = a sin(alpha_w) - rho1."""
     import dataclasses
-    from ltca.validate import fit_elliptic
+    from ltca.verify.validate import fit_elliptic
     lm = dataclasses.replace(fzg_lm, fid=dataclasses.replace(fzg_lm.fid, cells_per_b=10.0, window=2.5))
     model = lm.model
     res = solve_position(lm, np.radians(roll_deg), fzg_case.torques[0])

@@ -12,7 +12,7 @@ from ltca.case import FIDELITIES, load_case
 from ltca.cylindrical.loaded_model import Fidelity, prepare
 from ltca.cylindrical.model import build_model
 from ltca.cylindrical.run import analyse, cycle_rolls
-from ltca.validate import pitch_point_hertz
+from ltca.verify.validate import pitch_point_hertz
 
 
 def _te_ptp(case, tmp_path, n=12, fidelity="default"):

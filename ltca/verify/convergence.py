@@ -12,12 +12,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .case import FIDELITIES, load_case
-from .cylindrical.loaded_model import Fidelity, prepare
-from .cylindrical.loaded import te_arcsec
-from .cylindrical.model import build_model
-from .results import write_json
-from .cylindrical.run import analyse, cycle_rolls
+from ..case import FIDELITIES, load_case
+from ..cylindrical.loaded_model import Fidelity, prepare
+from ..cylindrical.loaded import te_arcsec
+from ..cylindrical.model import build_model
+from ..results import write_json
+from ..cylindrical.run import analyse, cycle_rolls
 
 __all__ = ["LADDER", "run_convergence"]
 

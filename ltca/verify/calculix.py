@@ -11,7 +11,7 @@ rotation undetermined before contact closes; the pinion is therefore placed a ti
 
 Compared per position with ours (:func:`ltca.cylindrical.loaded.solve_position`): loaded TE (unloaded part removed,
 arcsec of the gear), load share per pinion tooth, peak pressure, wall time. The validation command that
-runs the comparison, with CalculiX's own convergence ladders, is :mod:`ltca.crosscheck`.
+runs the comparison, with CalculiX's own convergence ladders, is :mod:`ltca.verify.crosscheck`.
 """
 from __future__ import annotations
 
@@ -31,9 +31,9 @@ from fem.solids import ContactLine, build_refined_segment, facets_near_lines
 from fem.compliance import segment_spec
 from geometry.pair import rotation_z
 
-from .cylindrical.loaded_model import LoadedModel
-from .cylindrical.loaded import solve_position
-from .cylindrical.tca import ARCSEC_PER_RAD, first_contact, flank_gaps
+from ..cylindrical.loaded_model import LoadedModel
+from ..cylindrical.loaded import solve_position
+from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact, flank_gaps
 
 __all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "richardson", "contact_lines",
            "solve_ccx", "solve_ours", "narrowest_contact"]

@@ -8,9 +8,9 @@ Two ladders say how far that rung is from converged:
   nominal Hertz half-width b) and gives converged TE and peak pressure by Richardson extrapolation;
 * the **pressure ladder** at the other positions whose narrowest contact the band does not resolve
   (fewer than 3 elements per half-width; double contact near the pinion root has b ~ 100 um) refines a 2 mm window of that contact at mid-face only
-  (:class:`ltca.calculix.Focus`, sizes b/2, b/3, b/4.5 of its local half-width) on a coarse rest
+  (:class:`ltca.verify.calculix.Focus`, sizes b/2, b/3, b/4.5 of its local half-width) on a coarse rest
   (rung 0, our coarse fidelity's element sizes), with the penalty slope scaled to the window's element
-  size (:func:`ltca.calculix.penalty_slope`), and the peak pressure fitted in the window is extrapolated
+  size (:func:`ltca.verify.calculix.penalty_slope`), and the peak pressure fitted in the window is extrapolated
   the same way. Ours is compared in the same window.
 
 Each CalculiX run is kept in its own folder under ``out`` and reused when the same deck is asked for again.
@@ -25,9 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .calculix import (Focus, PositionComparison, ccx_ladder, narrowest_contact, penalty_slope, richardson,
-                       solve_ccx, solve_ours)
-from .cylindrical.loaded_model import LoadedModel
+from .calculix import (Focus, PositionComparison, ccx_ladder, narrowest_contact, penalty_slope, richardson, solve_ccx,
+                       solve_ours)
+from ..cylindrical.loaded_model import LoadedModel
 
 __all__ = ["BOUNDS", "BOUNDS_HELICAL_TE", "PressureLadder", "pressure_ladder", "run_calculix_validation"]
 
@@ -118,11 +118,11 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
     otherwise. Raises ``CaseError`` on a bad case or
     position list and ``fem.calculix.run.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
     from fem.calculix.run import ccx_path
-    from .case import FIDELITIES, load_case
-    from .errors import CaseError
-    from .cylindrical.loaded_model import Fidelity, prepare
-    from .cylindrical.model import build_model
-    from .cylindrical.run import cycle_rolls
+    from ..case import FIDELITIES, load_case
+    from ..errors import CaseError
+    from ..cylindrical.loaded_model import Fidelity, prepare
+    from ..cylindrical.model import build_model
+    from ..cylindrical.run import cycle_rolls
     ccx_path()
     say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
     if refine < 0 or refine > 4:

@@ -13,9 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .cylindrical.loaded_model import LoadedModel, hertz_line
-from .cylindrical.loaded import solve_position
-from .cylindrical.model import PairModel
+from ..cylindrical.loaded_model import LoadedModel, hertz_line
+from ..cylindrical.loaded import solve_position
+from ..cylindrical.model import PairModel
 
 __all__ = ["HertzCheck", "pitch_point_hertz", "iso6336_stiffness", "run_validate", "fit_elliptic"]
 
@@ -113,13 +113,13 @@ def iso6336_stiffness(model: PairModel) -> tuple[float, float]:
 def run_validate(out: str = "out/validate", progress: bool = True) -> int:
     """Run the validation cases; print measured vs reference, error and time. Returns an exit status.
 
-    (The CalculiX cross-check is ``ltca.crosscheck.run_calculix_validation``.)"""
-    from .case import FIDELITIES, load_case
-    from .cylindrical.loaded_model import Fidelity, prepare
-    from .cylindrical.model import build_model
-    from .cylindrical.run import cycle_rolls
-    from .cylindrical.tca import unloaded_tca
-    root = Path(__file__).resolve().parent.parent / "cases"
+    (The CalculiX cross-check is ``ltca.verify.crosscheck.run_calculix_validation``.)"""
+    from ..case import FIDELITIES, load_case
+    from ..cylindrical.loaded_model import Fidelity, prepare
+    from ..cylindrical.model import build_model
+    from ..cylindrical.run import cycle_rolls
+    from ..cylindrical.tca import unloaded_tca
+    root = Path(__file__).resolve().parent.parent.parent / "cases"
     rows = []
     t0 = time.perf_counter()
     case = load_case(root / "fzg_c14.toml")
@@ -148,7 +148,7 @@ def run_validate(out: str = "out/validate", progress: bool = True) -> int:
             rows.append(("pitch point line load min .. max over the face [N/mm]", hc.line_load_min,
                          f"max {hc.line_load_max:.1f} (mid-face {hc.line_load_mid:.1f})", info, 0.0))
             res = solve_position(lm, 0.0, case.torques[0])
-            from .cylindrical.results import mesh_stiffness
+            from ..cylindrical.results import mesh_stiffness
             c = float(mesh_stiffness(lm, res.theta, res.theta0, case.torques[0]))
             cp, cth = iso6336_stiffness(model)
             rows.append(("single-pair stiffness [N/(mm um)]", c, f"[{0.8 * cp:.2f}, {1.2 * cth:.2f}] (ISO c'={cp:.2f},"

@@ -9,10 +9,10 @@ import time
 
 import numpy as np
 
-from .case import FIDELITIES, load_case
-from .cylindrical.loaded_model import Fidelity, prepare
-from .cylindrical.model import build_model
-from .cylindrical.run import analyse, cycle_rolls
+from ..case import FIDELITIES, load_case
+from ..cylindrical.loaded_model import Fidelity, prepare
+from ..cylindrical.model import build_model
+from ..cylindrical.run import analyse, cycle_rolls
 from .validate import pitch_point_hertz
 
 __all__ = ["run_bench"]
