@@ -1,7 +1,8 @@
 """Flank compliance of one gear body: FE far field on a coarse flank grid plus the half-space near field.
 
-The body (the teeth that can touch plus one neighbour each side, rim down to the bore, fixed there)
-is meshed once, factorised once, and loaded by a unit normal force spread over a small patch around
+The body is the whole gear (:mod:`fem.solids.gear_body`: the 360 deg rim, web and hub, the teeth that
+can touch and one neighbour each side meshed finely, held at the bore as on a rigid shaft, or at the rim
+of an internal gear as in a rigid housing); it is meshed once, factorised once, and loaded by a unit normal force spread over a small patch around
 each node of a coarse grid on the loaded flanks. The coarse FE cannot resolve the contact's local
 deformation, so the compliance is split (DESIGN.md "Near field", after Vijayakar, IJNME 31 (1991)):
 
@@ -33,10 +34,10 @@ from geometry.cylindrical import arc_length, helical_flank
 from .elastic import assemble_stiffness
 from .loads import patch_loads, patch_quadrature
 from .readout import interpolation_matrix, stress_matrix
-from .solids import SegmentSpec, build_segment
+from .solids import GearBodySpec, SegmentSpec, build_gear_body
 from .solver import factorize
 
-__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "segment_spec"]
+__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "body_spec", "segment_spec"]
 
 
 @dataclass(frozen=True)
@@ -55,6 +56,8 @@ class ComplianceSpec:
     young: float
     poisson: float
     root_points: tuple[int, int] = (10, 7)   # fillet points (along fillet, along face) per loaded tooth
+    web: tuple[float, float, float, float] | None = None  # (r_rim, r_hub, web width, web offset), mm; None: solid
+    far_teeth: str = "none"       # teeth away from the load: "none" (root circle) or "full" (see fem.solids.gear_body)
 
 
 @dataclass
@@ -180,6 +183,14 @@ def segment_spec(profile, teeth, r_bore: float, face_width: float, h_flank: floa
                        internal=profile.internal, h_flank=h_flank, h_body=h_body)
 
 
+def body_spec(profile, spec: ComplianceSpec) -> GearBodySpec:
+    """The whole-gear body of a generated profile (geometry.involute.ToothProfile) for a compliance spec."""
+    seg = segment_spec(profile, spec.teeth, spec.r_bore, spec.face_width, spec.h_flank, spec.h_body)
+    return GearBodySpec(seg.outline, seg.kind, seg.side, seg.z, seg.teeth, seg.r_bore, seg.face_width,
+                        seg.lead_twist, seg.internal, rim=spec.web, far_teeth=spec.far_teeth,
+                        h_flank=seg.h_flank, h_body=seg.h_body)
+
+
 def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None) -> BodyCompliance:
     """Mesh, assemble, factorise and load one gear body; see the module docstring.
 
@@ -195,8 +206,7 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     say = progress or (lambda msg: None)
     t = {}
     t0 = time.perf_counter()
-    seg = segment_spec(profile, spec.teeth, spec.r_bore, spec.face_width, spec.h_flank, spec.h_body)
-    mesh = build_segment(seg, cache_dir=cache_dir)
+    mesh = build_gear_body(body_spec(profile, spec), cache_dir=cache_dir)
     t["mesh"] = time.perf_counter() - t0
     say(f"meshed z={profile.z}: {len(mesh.nodes)} nodes, {len(mesh.tets)} tets, {3 * len(mesh.nodes)} dofs "
         f"({t['mesh']:.1f} s)")

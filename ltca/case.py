@@ -52,6 +52,10 @@ class Member:
     internal: bool
     modifications: Modifications
     thickness_allowance: float = 0.0   # mm, normal, total tooth thinning (backlash)
+    rim_thickness: float | None = None # mm, radial rim below the root (ring gear: above it); None: solid disc
+    web_thickness: float | None = None # mm, axial width of the web that joins rim and hub
+    web_offset: float = 0.0            # mm, axial position of the web's mid-plane from mid-face
+    hub_diameter: float | None = None  # mm, where the web meets the hub (ring gear: the outer ring)
 
 
 @dataclass(frozen=True)
@@ -107,6 +111,15 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "bore_diameter_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
         "internal": (bool, False, False, None, "true or false"),
         "thickness_allowance_um": (float, False, 0.0, lambda v: 0 <= v <= 2000, "a number in [0, 2000] um"),
+        "rim_thickness_mm": (float, False, None, lambda v: 0 < v <= 1e4,
+                             "a number in (0, 1e4] mm: radial rim thickness below the root circle (a ring gear: "
+                             "above it), given with web_thickness_mm"),
+        "web_thickness_mm": (float, False, None, lambda v: 0 < v <= 2000,
+                             "a number in (0, 2000] mm, at most the face width: the web joining rim and hub"),
+        "web_offset_mm": (float, False, 0.0, lambda v: -1000 <= v <= 1000,
+                          "a number in [-1000, 1000] mm: the web's mid-plane from mid-face"),
+        "hub_diameter_mm": (float, False, None, lambda v: 0 < v <= 1e5,
+                            "a positive number (mm): where the web meets the hub (a ring gear: the outer ring)"),
     },
     "modifications": {
         "tip_relief_um": (float, False, 0.0, lambda v: 0 <= v <= 500, "a number in [0, 500] um"),
@@ -201,8 +214,20 @@ def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
 def _member(data: dict, name: str, file: str | None) -> Member:
     m = _section(data, name, "member", file, required=True)
     mods = _modifications(data[name].get("modifications", {}), f"{name}.modifications", file)
+    if (m["rim_thickness_mm"] is None) != (m["web_thickness_mm"] is None):
+        key = "web_thickness_mm" if m["web_thickness_mm"] is None else "rim_thickness_mm"
+        raise CaseError(f"{name}.{key}", None, "rim_thickness_mm and web_thickness_mm are given together "
+                        "(a webbed body) or not at all (a solid disc)", file)
+    if m["web_thickness_mm"] is not None and m["web_thickness_mm"] > m["face_width_mm"]:
+        raise CaseError(f"{name}.web_thickness_mm", m["web_thickness_mm"],
+                        f"at most the face width {m['face_width_mm']} mm", file)
+    if m["web_thickness_mm"] is not None and abs(m["web_offset_mm"]) + m["web_thickness_mm"] / 2 > \
+            m["face_width_mm"] / 2 + 1e-9:
+        raise CaseError(f"{name}.web_offset_mm", m["web_offset_mm"], "a web inside the face width: "
+                        f"|offset| + web_thickness/2 <= {m['face_width_mm'] / 2} mm", file)
     return Member(m["teeth"], m["profile_shift"], m["face_width_mm"], m["tip_diameter_mm"],
-                  m["bore_diameter_mm"], m["internal"], mods, m["thickness_allowance_um"] * 1e-3)
+                  m["bore_diameter_mm"], m["internal"], mods, m["thickness_allowance_um"] * 1e-3,
+                  m["rim_thickness_mm"], m["web_thickness_mm"], m["web_offset_mm"], m["hub_diameter_mm"])
 
 
 def parse_case(data: dict, file: str | None = None) -> CylindricalCase:

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .gear_body import GearBodySpec, build_gear_body
 from .segment import build_segment
 from .spec import SegmentMesh, SegmentSpec
 
@@ -52,7 +53,7 @@ def _line_size_expression(line: ContactLine, h: float, half_band: float, grow_ac
             f"+{grow_across:.9g}*{excess(coord(el), 0.5 * length + half_band)}")
 
 
-def build_refined_segment(spec: SegmentSpec, lines: list[ContactLine], h_contact: float, half_band: float,
+def build_refined_segment(spec: SegmentSpec | GearBodySpec, lines: list[ContactLine], h_contact: float, half_band: float,
                           grow_across: float = 0.3, grow_depth: float = 0.6,
                           focus: tuple[tuple[ContactLine, float, float], ...] = ()) -> SegmentMesh:
     """Mesh ``spec`` with elements of size ``h_contact`` (mm) within ``half_band`` (mm) of ``lines``.
@@ -66,7 +67,10 @@ def build_refined_segment(spec: SegmentSpec, lines: list[ContactLine], h_contact
             raise ValueError(f"contact element size {h} must be in (0, h_flank = {spec.h_flank}]")
     exprs = tuple(_line_size_expression(ln, h_contact, half_band, grow_across, grow_depth) for ln in lines)
     exprs += tuple(_line_size_expression(ln, h, hb, grow_across, grow_depth) for ln, h, hb in focus)
-    return build_segment(dataclasses.replace(spec, size_fields=exprs), cache_dir=None)
+    refined = dataclasses.replace(spec, size_fields=exprs)
+    if isinstance(spec, GearBodySpec):
+        return build_gear_body(refined)
+    return build_segment(refined, cache_dir=None)
 
 
 def facets_near_lines(mesh: SegmentMesh, groups: tuple[str, ...], lines: list[ContactLine],

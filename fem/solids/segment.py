@@ -7,10 +7,8 @@ from __future__ import annotations
 
 import os
 import time
-from pathlib import Path
 
-import numpy as np
-
+from .cache import load_cached, store_cached
 from .segment_gmsh import mesh_with_gmsh
 from .session import gmsh_session
 from .spec import SegmentMesh, SegmentSpec
@@ -36,20 +34,11 @@ def build_segment(spec: SegmentSpec, cache_dir: str | os.PathLike | None = None,
     SegmentMesh
     """
     t0 = time.perf_counter()
-    key = spec.spec_hash
-    path = None
-    if cache_dir is not None:
-        path = Path(cache_dir) / f"segment_{key}.npz"
-        if path.exists():
-            with np.load(path) as d:
-                facets = {k[len("facet__"):]: d[k] for k in d.files if k.startswith("facet__")}
-                return SegmentMesh(d["nodes"], d["tets"], facets, key, time.perf_counter() - t0)
+    cached = load_cached(cache_dir, "segment", spec.spec_hash)
+    if cached is not None:
+        return cached
     with gmsh_session(progress):
         nodes, tets, facets = mesh_with_gmsh(spec)
-    mesh = SegmentMesh(nodes, tets, facets, key, time.perf_counter() - t0)
-    if path is not None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".tmp{os.getpid()}.npz")
-        np.savez(tmp, nodes=nodes, tets=tets, **{f"facet__{k}": v for k, v in facets.items()})
-        os.replace(tmp, path)
+    mesh = SegmentMesh(nodes, tets, facets, spec.spec_hash, time.perf_counter() - t0)
+    store_cached(cache_dir, "segment", mesh)
     return mesh

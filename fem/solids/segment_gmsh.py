@@ -12,7 +12,7 @@ import numpy as np
 from .section import SectionPiece, rot2, section_pieces
 from .spec import SegmentSpec
 
-__all__ = ["mesh_with_gmsh"]
+__all__ = ["mesh_with_gmsh", "extract_mesh", "polyline_distance"]
 
 _GMSH_TO_MESHIO_TET10 = np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8])
 _FLIP_TRI6 = np.array([0, 2, 1, 5, 4, 3])
@@ -66,7 +66,7 @@ def _build_solid(spec: SegmentSpec, pieces: list[SectionPiece]) -> int:
     return next(t for d, t in out if d == 3)
 
 
-def _polyline_distance(p: np.ndarray, poly: np.ndarray) -> float:
+def polyline_distance(p: np.ndarray, poly: np.ndarray) -> float:
     """Distance from point ``p`` (2,) to the polyline ``poly`` (m, 2)."""
     a, d = poly[:-1], np.diff(poly, axis=0)
     t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0, 1)
@@ -92,7 +92,7 @@ def _label_surfaces(spec: SegmentSpec, pieces: list[SectionPiece], vol: int) -> 
                 names[tag] = "ends"
                 continue
         p = rot2(np.array([[x, y]]), -spec.lead_twist * zc)[0]
-        dist = [_polyline_distance(p, pc.ref) for pc in pieces]
+        dist = [polyline_distance(p, pc.ref) for pc in pieces]
         i = int(np.argmin(dist))
         if dist[i] > 1e-2:
             raise RuntimeError(f"surface {tag} matches no transverse curve (distance {dist[i]:.3g} mm)")
@@ -225,31 +225,42 @@ def mesh_with_gmsh(spec: SegmentSpec) -> tuple[np.ndarray, np.ndarray, dict[str,
         gmsh.model.mesh.generate(3)
         if spec.order == 2:
             gmsh.model.mesh.setOrder(2)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-        index[tags.astype(np.int64)] = np.arange(len(tags))
-        nodes = coords.reshape(-1, 3)
-        etype, npe = (11, 10) if spec.order == 2 else (4, 4)
-        _, conn = gmsh.model.mesh.getElementsByType(etype)
-        tets = index[conn.astype(np.int64)].reshape(-1, npe)
-        if spec.order == 2:
-            tets = tets[:, _GMSH_TO_MESHIO_TET10]
-        used = np.zeros(len(nodes), dtype=bool)
-        used[tets] = True
-        index[tags.astype(np.int64)] = np.cumsum(used) - 1              # drop nodes of no tetrahedron
-        nodes = nodes[used]
-        tets = np.cumsum(used)[tets] - 1
-        ttype, tpe = (9, 6) if spec.order == 2 else (2, 3)
-        parts: dict[str, list[np.ndarray]] = {}
-        for tag, label in labels.items():
-            _, conn = gmsh.model.mesh.getElementsByType(ttype, tag)
-            parts.setdefault(label, []).append(index[conn.astype(np.int64)].reshape(-1, tpe))
-        faces = _FaceIndex(tets, len(nodes))
-        facets = {k: _orient_outward(np.concatenate(v), faces, nodes) for k, v in sorted(parts.items())}
+        nodes, tets, facets = extract_mesh(labels, spec.order)
     finally:
         gmsh.model.remove()
         if prev_model and prev_model in gmsh.model.list():
             gmsh.model.setCurrent(prev_model)
         for k, v in old.items():
             gmsh.option.setNumber(k, v)
+    return nodes, tets, facets
+
+
+def extract_mesh(labels: dict[int, str], order: int) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    """Nodes, tetrahedra (meshio order) and named, outward-oriented facets of the current gmsh model.
+
+    ``labels`` maps boundary surface tags to facet group names; nodes of no tetrahedron are dropped.
+    """
+    import gmsh
+
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
+    index[tags.astype(np.int64)] = np.arange(len(tags))
+    nodes = coords.reshape(-1, 3)
+    etype, npe = (11, 10) if order == 2 else (4, 4)
+    _, conn = gmsh.model.mesh.getElementsByType(etype)
+    tets = index[conn.astype(np.int64)].reshape(-1, npe)
+    if order == 2:
+        tets = tets[:, _GMSH_TO_MESHIO_TET10]
+    used = np.zeros(len(nodes), dtype=bool)
+    used[tets] = True
+    index[tags.astype(np.int64)] = np.cumsum(used) - 1              # drop nodes of no tetrahedron
+    nodes = nodes[used]
+    tets = np.cumsum(used)[tets] - 1
+    ttype, tpe = (9, 6) if order == 2 else (2, 3)
+    parts: dict[str, list[np.ndarray]] = {}
+    for tag, label in labels.items():
+        _, conn = gmsh.model.mesh.getElementsByType(ttype, tag)
+        parts.setdefault(label, []).append(index[conn.astype(np.int64)].reshape(-1, tpe))
+    faces = _FaceIndex(tets, len(nodes))
+    facets = {k: _orient_outward(np.concatenate(v), faces, nodes) for k, v in sorted(parts.items())}
     return nodes, tets, facets

@@ -103,12 +103,12 @@ def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, c
     say(f"teeth in mesh: pinion {list(teeth1)}, gear {list(teeth2)}; modelled with one neighbour each side")
     timings = {"tca": time.perf_counter() - t0}
 
-    def spec(teeth, side, r_range, r_bore):
+    def spec(teeth, side, r_range, r_bore, web):
         return ComplianceSpec(teeth=tuple(range(min(teeth) - 1, max(teeth) + 2)), loaded=teeth, side=side,
-                              r_range=r_range, grid=fid.grid, face_width=b, r_bore=r_bore, h_flank=fid.h_flank,
+                              r_range=r_range, grid=fid.grid, face_width=b, r_bore=r_bore, web=web, h_flank=fid.h_flank,
                               h_body=fid.h_body, depth=fid.depth, young=case.young, poisson=case.poisson)
-    body1 = body_compliance(p1, spec(teeth1, +1, model.pinion_range(), model.r_bore1), cache_dir, say)
-    body2 = body_compliance(p2, spec(teeth2, model.gear_side, model.gear_range(), model.r_bore2), cache_dir, say)
+    body1 = body_compliance(p1, spec(teeth1, +1, model.pinion_range(), model.r_bore1, model.web1), cache_dir, say)
+    body2 = body_compliance(p2, spec(teeth2, model.gear_side, model.gear_range(), model.r_bore2, model.web2), cache_dir, say)
     for name in ("mesh", "assembly", "factorisation", "setup", "solves"):
         timings[name] = body1.timings.get(name, 0) + body2.timings.get(name, 0)
     return LoadedModel(model, fid, teeth1, teeth2, body1, body2, b_nom, R_nom, torque, timings)

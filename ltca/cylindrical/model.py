@@ -37,6 +37,8 @@ class PairModel:
     gear_side: int          # which side label of the gear outline carries the load
     phi_pitch: float        # pinion rotation where tooth 0 touches at the pitch point (rad)
     gear_shift: int = 0     # gear tooth index change per pinion mesh cycle (physical tooth bookkeeping)
+    web1: tuple | None = None   # (r_rim, r_hub, web width, web offset) of a webbed pinion, mm; None: solid disc
+    web2: tuple | None = None
 
     @property
     def pitch_angle(self) -> float:
@@ -154,6 +156,28 @@ def build_model(case: CylindricalCase) -> PairModel:
     P1, N1 = flank_point_normal(p1, +1, np.array([pair.r_w1]), np.zeros(1), -1)
     s1 = pair.separation(-2 * np.pi / p1.z, P1, N1)
     shift = int(s1.gear_tooth[0] - s.gear_tooth[0])
+    web1 = _web(case.pinion, p1, r_b, "pinion", case.module)
+    web2 = _web(case.gear, p2, r_b2, "gear", case.module)
     return PairModel(case, p1, p2, pair, _modification(case.pinion.modifications, p1, "pinion"),
                      _modification(case.gear.modifications, p2, "gear"), b, r_b, r_b2,
-                     int(s.gear_side[0]) or 1, phi_pitch, shift)
+                     int(s.gear_side[0]) or 1, phi_pitch, shift, web1, web2)
+
+
+def _web(member, profile: ToothProfile, r_support: float, name: str, module: float):
+    """(r_rim, r_hub, web width, web offset) of a webbed member, mm, or None for a solid disc.
+
+    The rim ends ``rim_thickness`` below the root circle (a ring gear: above it); the hub ring reaches from the
+    support to ``hub_diameter / 2``, by default a third of the way from the support to the rim."""
+    if member.rim_thickness is None:
+        return None
+    sgn = 1.0 if member.internal else -1.0
+    r_rim = profile.r_root + sgn * member.rim_thickness
+    if (r_rim - r_support) * sgn >= -0.5 * module:
+        raise CaseError(f"{name}.rim_thickness_mm", member.rim_thickness,
+                        f"a rim that ends at least half a module short of the {'outer ring' if member.internal else 'bore'}"
+                        f" (at most {abs(profile.r_root - r_support) - 0.5 * module:.3f} mm)")
+    r_hub = 0.5 * member.hub_diameter if member.hub_diameter else r_support + (r_rim - r_support) / 3
+    if not (min(r_support, r_rim) < r_hub < max(r_support, r_rim)):
+        raise CaseError(f"{name}.hub_diameter_mm", 2 * r_hub,
+                        f"between the support ({2 * r_support:.3f} mm) and the rim ({2 * r_rim:.3f} mm) diameters")
+    return (float(r_rim), float(r_hub), float(member.web_thickness), float(member.web_offset))

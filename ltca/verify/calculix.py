@@ -28,7 +28,7 @@ from geometry.cylindrical import arc_length
 from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
 from fem.calculix.run import read_results, run_ccx
 from fem.solids import ContactLine, build_refined_segment, facets_near_lines
-from fem.compliance import segment_spec
+from fem.compliance import body_spec
 from geometry.pair import rotation_z
 
 from ..cylindrical.loaded_model import LoadedModel
@@ -211,8 +211,8 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
         return out
     b = model.face_width
     t0 = time.perf_counter()
-    spec1 = segment_spec(p1, lm.body1.spec.teeth, model.r_bore1, b, st.h_flank, st.h_body)
-    spec2 = segment_spec(p2, lm.body2.spec.teeth, model.r_bore2, b, st.h_flank, st.h_body)
+    spec1 = body_spec(p1, dataclasses.replace(lm.body1.spec, h_flank=st.h_flank, h_body=st.h_body))
+    spec2 = body_spec(p2, dataclasses.replace(lm.body2.spec, h_flank=st.h_flank, h_body=st.h_body))
     L1, L2 = body_lines(inv1), body_lines(inv2)
     F1 = F2 = ()
     if focus is not None:

@@ -1,0 +1,36 @@
+"""Mesh cache: a meshed solid stored as ``<prefix>_<spec_hash>.npz`` and reloaded on a hit."""
+from __future__ import annotations
+
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+
+from .spec import SegmentMesh
+
+__all__ = ["load_cached", "store_cached"]
+
+
+def load_cached(cache_dir, prefix: str, key: str) -> SegmentMesh | None:
+    """The mesh stored as ``<prefix>_<key>.npz`` in ``cache_dir``, or None (no cache, or a miss)."""
+    if cache_dir is None:
+        return None
+    t0 = time.perf_counter()
+    path = Path(cache_dir) / f"{prefix}_{key}.npz"
+    if not path.exists():
+        return None
+    with np.load(path) as d:
+        facets = {k[len("facet__"):]: d[k] for k in d.files if k.startswith("facet__")}
+        return SegmentMesh(d["nodes"], d["tets"], facets, key, time.perf_counter() - t0)
+
+
+def store_cached(cache_dir, prefix: str, mesh: SegmentMesh) -> None:
+    """Store ``mesh`` as ``<prefix>_<spec_hash>.npz`` in ``cache_dir`` (a temporary name, then renamed)."""
+    if cache_dir is None:
+        return
+    path = Path(cache_dir) / f"{prefix}_{mesh.spec_hash}.npz"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(f".tmp{os.getpid()}.npz")
+    np.savez(tmp, nodes=mesh.nodes, tets=mesh.tets, **{f"facet__{k}": v for k, v in mesh.facets.items()})
+    os.replace(tmp, path)
