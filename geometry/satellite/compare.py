@@ -72,7 +72,8 @@ def profile_deviation(ref: FormedTooth, other: FormedTooth, reach: float = 2.5, 
     """Deviation (um) of ``other`` from ``ref`` along the ``ref`` outline normal, fillet to tip corner.
 
     The crossing of the normal line with the other outline nearest to the ``ref`` point is bracketed on a
-    grid of ``step`` mm within ``+-reach`` mm and bisected to 0.1 nm; NaN where there is none. About ``n_points`` (c) points, fillet to tip corner.
+    grid of ``step`` mm within ``+-reach`` mm and bisected to 0.1 nm; NaN where there is none. About
+    ``n_points`` (c) points, fillet to tip corner.
     """
     pr = ref.profile
     sel = (pr.xy[:, 0] > 0) & (pr.kind > 0)

@@ -117,7 +117,7 @@ def form_hob_three_pass(design: SatelliteDesign, tool: HobThreePass = HobThreePa
     ``min_i (h(rho) - t_i / r)``: for +-t both are ``h(rho) - t / r``, a tooth thinner by 2 t on every
     circle, i.e. Eq. 3 for ``t = k m / 2``. Tip arc and root arc are re-cut to the new corners.
     """
-    t = 0.5 * design.thinning * design.m if tool.shift is None else tool.shift
+    t = tool.tangential_shift(design)
     blank0, rack = design.blank(), design.rack()
     r = blank0.r_ref
     offsets = np.array([0.0, t, -t])

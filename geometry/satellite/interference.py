@@ -24,7 +24,7 @@ Both directions are checked: the profiles are symmetric, so direction -1 at phi 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -153,9 +153,7 @@ def minimum_thinning(design: SatelliteDesign, wheel: ToothProfile, e: float, met
 
     def mg(k):
         count[0] += 1
-        d = SatelliteDesign(design.z, design.m, design.alpha, design.x, k, design.rack_addendum_coef,
-                            design.rack_dedendum_coef, design.rack_tip_radius_coef, design.d_tip)
-        sat = form_satellite(d, method).profile
+        sat = form_satellite(replace(design, thinning=k), method).profile
         mesh = EccentricMesh(sat, wheel, e)
         return margin(mesh, n_positions)[0] * sat.r_base * 1e3
 

@@ -121,6 +121,14 @@ class HobThreePass:
                self.shift is None or (np.isfinite(self.shift) and 0 <= self.shift <= 2), "None or [0, 2] mm")
         _check("HobThreePass.lead_angle", self.lead_angle, 0 <= self.lead_angle <= 0.2, "[0, 0.2] rad")
 
+    def tangential_shift(self, design: "SatelliteDesign") -> float:
+        """Offset of passes 2 and 3 along the rack pitch line, mm (k m / 2 unless given)."""
+        return 0.5 * design.thinning * design.m if self.shift is None else self.shift
+
+    def axial_shift(self, design: "SatelliteDesign") -> float:
+        """The same offset as a shift of the hob along its axis, mm: ``shift / cos(lead_angle)``."""
+        return self.tangential_shift(design) / np.cos(self.lead_angle)
+
 
 @dataclass(frozen=True)
 class DiskCutter:

@@ -37,7 +37,7 @@ import numpy as np
 from ..gear_blank import GearBlank, _check
 from ..profile import ToothProfile
 from ..shaper import ShaperCutter, generate_by_shaper
-from ..transverse import inverse_involute, involute
+from ..transverse import involute
 from .tools import SatelliteDesign
 
 __all__ = ["CentralWheelDesign", "WheelChoice", "wheel_shift", "wheel_options", "generate_central_wheel"]
@@ -77,7 +77,8 @@ class CentralWheelDesign:
                isinstance(self.tooth_difference, (int, np.integer)) and 1 <= self.tooth_difference <= 8,
                "an integer in [1, 8] (z2 - z1 < 1: the satellite cannot be assembled inside the wheel)")
         _check("CentralWheelDesign.eccentricity", self.eccentricity,
-               self.eccentricity is None or (np.isfinite(self.eccentricity) and self.eccentricity > 0), "None or > 0 mm")
+               self.eccentricity is None or (np.isfinite(self.eccentricity) and self.eccentricity > 0),
+               "None or > 0 mm")
         _check("CentralWheelDesign.x2", self.x2, np.isfinite(self.x2) and abs(self.x2) <= 1, "[-1, 1]")
         _check("CentralWheelDesign.shaper_teeth", self.shaper_teeth,
                isinstance(self.shaper_teeth, (int, np.integer)) and self.shaper_teeth >= 8, "an integer >= 8")
