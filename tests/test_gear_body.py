@@ -188,3 +188,21 @@ def test_shaft_seat_and_web_trends(fzg_case, tmp_path):
     print(f"webbed/solid {k_web / k[20.0]:.3f}, ISO C_R {C_R:.3f}")
     assert k_web < k[20.0]
     assert k_web / k[20.0] == pytest.approx(C_R, abs=0.1)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name, bore1", [("helical_m8_wide.toml", None), ("helical_c14.toml", 30.0),
+                                         ("fzg_c14.toml", 30.0), ("fzg_c14.toml", 40.0)])
+def test_mean_mesh_stiffness_in_iso_band(name, bore1, tmp_path):
+    """Solid-disc bodies on rigid shafts (FZG rig shafts 30-40 mm; the wide pair's bores half the reference
+    diameters): mean c_gamma between 0.8 c' and 1.2 c'_th of ISO 6336-1 (shared/reference/iso6336_stiffness.md)."""
+    from ltca.case import load_case
+    from ltca.cylindrical.model import build_model
+    from ltca.verify.validate import iso6336_stiffness
+    case = load_case(CASES / name)
+    if bore1 is not None:
+        case = dataclasses.replace(case, pinion=dataclasses.replace(case.pinion, bore_diameter=bore1))
+    k = _mean_stiffness(case, tmp_path, positions=12)
+    cp, cth = iso6336_stiffness(build_model(case))
+    print(f"{name} bore {bore1}: mean c_gamma {k:.2f} N/(mm um), ISO c' {cp:.2f}, c'_th {cth:.2f}")
+    assert 0.8 * cp <= k <= 1.2 * cth
