@@ -9,12 +9,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from conftest import CASES
 from ltca.drivetrain.backlash import backlash_curves, plot_backlash, unloaded_from_loaded
 from ltca.drivetrain.budget import (DEG, BallSplineMember, DriveTrain, MeshMember, TorsionMember, compute_budget,
                                     load_budget_case, run_budget)
 from ltca.errors import CaseError
 
-CASE = "cases/budget_wang.toml"
+CASE = str(CASES / "budget_wang.toml")
 TORQUES = np.array([2.5, 5.0, 7.5, 10.0])
 # seed 003, Table 3 (p. 1061), theoretical deformation / (1e-3 deg)
 TABLE3 = {"gear": [0.06, 0.11, 0.17, 0.22], "shaft": [8.64, 17.27, 25.91, 34.55],

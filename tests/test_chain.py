@@ -21,7 +21,9 @@ from ltca.drivetrain.chain import evaluate_chain, load_chain_case, pitch_deviati
 from geometry.errors import random_pitch_deviations, worst_case_pitch_deviations
 from ltca.errors import CaseError
 
-CASE = "cases/chain_zftkk250.toml"
+from conftest import CASES
+
+CASE = str(CASES / "chain_zftkk250.toml")
 
 
 @pytest.fixture(scope="module")
