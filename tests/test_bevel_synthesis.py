@@ -100,17 +100,13 @@ def test_three_control_points_parabolic_te_straight_path(setup, designs, side):
 def test_blank_offset_redesign_keeps_te(setup, designs, side):
     pin, info, _ = designs
     d, rd = info[side]["design"], info[side]["redesign"]
-    assert pin.flank(side).machine.blank_offset == 0.0
-    assert abs(d["synthesis"]["mean_contact"].r1[0]) > 0                   # sanity: diagnostics present
-    assert abs(pin.flank(side).machine.blank_offset - 0.0) < 1e-15
+    print(f"{side}: design blank offset {d['blank_offset']:.3f} mm -> redesign {rd['blank_offset']:.3f} mm")
+    assert pin.flank(side).machine.blank_offset == 0.0 and rd["blank_offset"] == 0.0   # redesigned to Em = 0
+    assert abs(d["blank_offset"]) > 0.1                                    # from a design that had an offset
     m0, m1 = d["metrics"], rd["metrics"]
     assert abs(m1["te_amplitude_arcsec"] / m0["te_amplitude_arcsec"] - 1) < 0.03
     assert abs(m1["path_angle_deg"] - m0["path_angle_deg"]) < 2.0
     assert m1["te_r2"] > 0.99 and m1["path_straightness_mm"] < 0.5
-
-
-def test_synthesis_speed(designs):
-    print(f"synthesis, both flanks: {designs[2]:.1f} s (target 10 s; measured, not asserted)")
 
 
 def test_bad_targets_name_the_parameter(setup):
