@@ -12,7 +12,8 @@ of seed s is the same whatever the sample size: numpy ``SeedSequence(s, spawn_ke
   (:func:`geometry.errors.random_pitch_deviations`), so that with the eccentricity every measured single pitch
   deviation stays within f_pT. Their sum is each tooth's position error: case key
   ``<member>.modifications.pitch_errors_um`` (added to any the base case has). The total cumulative pitch
-  deviation F_p follows from these and is reported against F_pT, not drawn.
+  deviation F_p follows from these; a draw whose F_p exceeds F_pT is drawn again (rejection: the gear
+  conforms to the class in F_p as well).
 - profile slope f_Halpha ~ U[-f_HalphaT, f_HalphaT] -> ``profile_slope_um``; helix slope f_Hbeta ->
   ``lead_slope_um`` (over the face width: the model's evaluation range is the whole flank, ISO's slightly less).
 - profile form f_falpha and helix form f_fbeta ~ U[-T, T] (sign: convex or hollow) -> ``profile_form_um`` and
@@ -54,8 +55,11 @@ def _draw_member(tol: Iso1328Tolerances, teeth: int, rng: np.random.Generator) -
     k = np.arange(teeth)
     ecc = e * np.sin(2 * np.pi * k / teeth + phase)
     room = max(tol.f_pT - 2 * e * np.sin(np.pi / teeth), 0.0)
-    dev = random_pitch_deviations(teeth, room, seed=int(rng.integers(2 ** 63)))[0]
-    pos = tooth_positions(dev) + ecc - ecc.mean()
+    for _ in range(1000):                                 # a conforming gear: F_p within F_pT too
+        dev = random_pitch_deviations(teeth, room, seed=int(rng.integers(2 ** 63)))[0]
+        pos = tooth_positions(dev) + ecc - ecc.mean()
+        if np.ptp(pos) <= tol.F_pT:
+            break
     single = np.roll(pos, -1) - pos                       # f_pt,k: pitch from tooth k to k + 1
     drawn = {"f_pt": float(np.abs(single).max()), "F_p": float(np.ptp(pos)), "F_r": 2 * e}
     for kind in _KEYS:

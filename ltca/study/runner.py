@@ -52,10 +52,10 @@ def cluster_client(scheduler: str | None = None, workers: int | None = None):
             client.close()
         return
     n = workers or local_cluster_size()
-    threads = str(max(1, local_cluster_size() // n))         # BLAS / PARDISO threads per worker
-    env = {k: threads for k in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")}
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                      env=env) as cluster, Client(cluster) as client:
+    # one task at a time per worker; BLAS / PARDISO threads as in ``ltca run`` (the contact solve limits its
+    # BLAS to one thread itself), so that a lone compliance task still uses every core
+    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
         yield client
 
 
