@@ -135,6 +135,8 @@ def test_each_variant_equals_a_standalone_run(sweep, tmp_path):
         for var in ("te_loaded", "te_unloaded", "max_pressure", "pair_load", "root_stress_pinion",
                     "root_stress_gear", "mesh_stiffness", "pressure"):
             a, b = pt[var].values, ref[var].values
+            if var == "pressure":        # run_case joins the torques' flank lattices (outer): pick this one's
+                b = ref[var].sel(flank_roll=pt.flank_roll.values).values
             np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-9 * np.nanmax(np.abs(b)), err_msg=var)
 
 

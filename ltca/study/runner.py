@@ -163,6 +163,7 @@ def run_study(study: Study | str | Path, out: str | Path, scheduler: str | None 
     study = study if isinstance(study, Study) else Study.from_toml(study)
     store = StudyStore(out)
     store.root.mkdir(parents=True, exist_ok=True)
+    store.clean()
     variants = study.expand()
     todo = {}
     for v in variants:

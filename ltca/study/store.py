@@ -46,6 +46,13 @@ class StudyStore:
         self.points = self.root / "points"
         self.compliance = self.root / "compliance"
 
+    def clean(self) -> int:
+        """Remove the temporary files a killed run left behind (never a finished point); their count."""
+        stale = [p for d in (self.points, self.compliance) if d.is_dir() for p in d.glob(".*.tmp*")]
+        for p in stale:
+            p.unlink(missing_ok=True)
+        return len(stale)
+
     def point_path(self, vid: str, torque_nm: float) -> Path:
         """The file of point (variant ``vid``, ``torque_nm``)."""
         return self.points / f"{vid}_T{torque_nm:.9g}.nc"
@@ -58,7 +65,7 @@ class StudyStore:
         """Write one point atomically (temporary name in the same directory, then rename)."""
         self.points.mkdir(parents=True, exist_ok=True)
         path = self.point_path(vid, torque_nm)
-        tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}.nc")
+        tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
         ds = ds.copy()
         ds.attrs.update(variant_id=vid, summary=json.dumps(head))
         ds.to_netcdf(tmp, engine="h5netcdf")
@@ -128,7 +135,7 @@ class StudyStore:
             ds.attrs.update(monte_carlo=json.dumps({"grade": mc.grade, "samples": mc.samples, "seed": mc.seed,
                                                     "members": list(mc.members)}))
         path = self.root / "study.nc"
-        tmp = path.with_name(f".study.tmp{os.getpid()}.nc")
+        tmp = path.with_name(f".study.nc.tmp{os.getpid()}")
         ds.to_netcdf(tmp, engine="h5netcdf")
         os.replace(tmp, path)
         return ds
