@@ -213,3 +213,11 @@ def test_readme_example_runs(tmp_path, monkeypatch):
     code = code.replace('"out/study_example"', repr(str(tmp_path / "example")))
     exec(compile(code, "README.md", "exec"), {})
     assert (tmp_path / "example" / "study.nc").is_file()
+
+
+def test_only_the_cli_imports_the_study_package():
+    from test_layout import import_graph
+    graph = import_graph()
+    users = {m for m, edges in graph.items() for t in edges if t.startswith("ltca.study") and
+             not m.startswith("ltca.study")}
+    assert users == {"ltca.cli"}

@@ -108,12 +108,14 @@ def _execute(client, study: Study, store: StudyStore, todo: dict, prog: _Progres
                     stats["compliance_loaded"] += 1
                     prog.say(f"geometry {vplan.key}: compliance kept from an earlier run")
                 else:
-                    cf = client.submit(compute_compliance, obj.case, vplan, key=f"compliance-{vplan.key}-{token}")
+                    cf = client.submit(compute_compliance, obj.case, vplan, key=f"compliance-{vplan.key}-{token}",
+                                       priority=10)        # before the remaining plans: points wait on it
                     meta[cf.key] = ("compliance", vplan.key, None)
                     ac.add(cf)
                 compliance[vplan.key] = cf
             for t in extra:
-                pf = client.submit(solve_point, obj.case, vplan, cf, t, key=f"point-{obj.id}-T{t:g}-{token}")
+                pf = client.submit(solve_point, obj.case, vplan, cf, t, key=f"point-{obj.id}-T{t:g}-{token}",
+                                   priority=5)
                 meta[pf.key] = ("point", obj, t)
                 ac.add(pf)
         elif kind == "compliance":
