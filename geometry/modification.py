@@ -26,6 +26,11 @@ class FlankModification:
         the base tangent (+ = the drive flank moved back, so the coast flank moved forward).
     profile_slope : f_Halpha, linear in the roll length over the active profile, zero at its middle,
         +f/2 (material removed) at the tip (ISO 1328-1 profile slope deviation, sign: tip relieved).
+    profile_form : f_falpha, the parabolic (second-order) part of a profile form deviation over the active
+        profile, zero at its middle and f at both ends: + convex (material removed at the ends), - hollow.
+        Its range about the least-squares mean line is |f| (the ISO 1328-1 form deviation of a parabola);
+        higher-order waviness is not modelled.
+    lead_form : f_fbeta, the same over the face width (zero at mid-face, f at both ends).
     """
     tip_relief: float = 0.0
     tip_relief_start_radius: float | None = None
@@ -35,6 +40,8 @@ class FlankModification:
     lead_slope: float = 0.0
     pitch_errors: tuple[tuple[int, float], ...] = ()
     profile_slope: float = 0.0
+    profile_form: float = 0.0
+    lead_form: float = 0.0
 
 
 def modification_depth(mod: FlankModification, r: np.ndarray, z: np.ndarray, tooth: np.ndarray,
@@ -82,6 +89,11 @@ def modification_depth(mod: FlankModification, r: np.ndarray, z: np.ndarray, too
     if mod.profile_slope != 0:
         mid, span = 0.5 * (L_tip + L_form), (L_tip - L_form)
         out = out + mod.profile_slope * (L - mid) / span
+    if mod.profile_form != 0:
+        mid, half = 0.5 * (L_tip + L_form), 0.5 * (L_tip - L_form)
+        out = out + mod.profile_form * ((L - mid) / half) ** 2
+    if mod.lead_form != 0:
+        out = out + mod.lead_form * (2.0 * z / face_width) ** 2
     if mod.pitch_errors:
         tooth = np.asarray(tooth)
         if teeth:

@@ -14,7 +14,8 @@ from typing import Any
 
 from .errors import CaseError
 
-__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "FIDELITIES"]
+__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "case_keys",
+           "FIDELITIES"]
 
 DEG = math.pi / 180.0
 
@@ -39,6 +40,8 @@ class Modifications:
     pitch_errors: tuple[tuple[int, float], ...] = ()  # (tooth, position error in mm): + drive flank moved back
     profile_slope: float = 0.0         # f_Halpha, mm (+ = tip relieved)
     roll_ratio_error: float = 0.0      # generating-chain ratio error e (-), turned into a profile slope
+    profile_form: float = 0.0          # f_falpha, mm, signed parabolic form deviation (+ convex, - hollow)
+    lead_form: float = 0.0             # f_fbeta, mm, signed parabolic form deviation over the face
 
 
 @dataclass(frozen=True)
@@ -131,6 +134,10 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "pitch_errors_um": (dict, False, {}, None, "a table {tooth index = error in um}"),
         "profile_slope_um": (float, False, 0.0, lambda v: -200 <= v <= 200, "a number in [-200, 200] um"),
         "roll_ratio_error": (float, False, 0.0, lambda v: -0.01 <= v <= 0.01, "a number in [-0.01, 0.01]"),
+        "profile_form_um": (float, False, 0.0, lambda v: -200 <= v <= 200,
+                            "a number in [-200, 200] um (parabolic form deviation: + convex, - hollow)"),
+        "lead_form_um": (float, False, 0.0, lambda v: -200 <= v <= 200,
+                         "a number in [-200, 200] um (parabolic form deviation: + convex, - hollow)"),
     },
     "assembly": {
         "centre_distance_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
@@ -208,7 +215,8 @@ def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
         tip_relief_exponent=m["tip_relief_exponent"], profile_crowning=m["profile_crowning_um"] * 1e-3,
         lead_crowning=m["lead_crowning_um"] * 1e-3, lead_slope=m["lead_slope_um"] * 1e-3,
         pitch_errors=tuple(sorted(errors)), profile_slope=m["profile_slope_um"] * 1e-3,
-        roll_ratio_error=m["roll_ratio_error"])
+        roll_ratio_error=m["roll_ratio_error"], profile_form=m["profile_form_um"] * 1e-3,
+        lead_form=m["lead_form_um"] * 1e-3)
 
 
 def _member(data: dict, name: str, file: str | None) -> Member:
@@ -274,6 +282,19 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
         torques=tuple(float(t) * 1e3 for t in torques), positions=ana["positions"], cycles=ana["cycles"],
         fidelity=ana["fidelity"],
         fidelity_params=dict(FIDELITIES[ana["fidelity"]]), source=c["source"] or None)
+
+
+def case_keys() -> dict[str, str]:
+    """Every settable case key as a dotted path (``"pinion.modifications.lead_crowning_um"``) -> what is allowed."""
+    out = {}
+    for sec in sorted(_TOP):
+        schema = "member" if sec in ("pinion", "gear") else sec
+        for key, spec in _SCHEMA[schema].items():
+            out[f"{sec}.{key}"] = spec[4]
+        if schema == "member":
+            for key, spec in _SCHEMA["modifications"].items():
+                out[f"{sec}.modifications.{key}"] = spec[4]
+    return out
 
 
 def read_toml(path: str | Path) -> dict:

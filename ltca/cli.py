@@ -1,4 +1,4 @@
-"""The ``ltca`` command: run, tca, convergence, validate, bench, budget, chain.
+"""The ``ltca`` command: run, tca, study, convergence, validate, bench, budget, chain.
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
@@ -30,6 +30,17 @@ def _cmd_tca(a: argparse.Namespace) -> int:
     from .cylindrical.run import run_tca
     run_tca(a.case, out=a.out, positions=a.positions)
     return 0
+
+
+def _cmd_study(a: argparse.Namespace) -> int:
+    from .study import run_study
+    ds = run_study(a.study, a.out, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet,
+                   plots=not a.no_plots)
+    import json
+    run = json.loads(ds.attrs["run"])
+    print(json.dumps({k: run[k] for k in ("points_total", "points_computed", "points_skipped",
+                                          "compliance_computed", "compliance_loaded", "wall_s")}, indent=1))
+    return 3 if run["failed"] else 0
 
 
 def _cmd_convergence(a: argparse.Namespace) -> int:
@@ -104,6 +115,20 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--out", default=None, help="output directory for summary.json and plots")
     t.add_argument("--positions", type=_positive_int, help="mesh positions per cycle (override)")
     t.set_defaults(func=_cmd_tca)
+
+    s = sub.add_parser("study", help="load-case and tolerance studies on Dask (grid, variants, ISO 1328 Monte Carlo)",
+                       description="Runs every variant of a study file at every torque on a Dask cluster: one "
+                                   "compliance per geometry, each point written as it finishes (a rerun skips "
+                                   "them). Writes study.nc, summary.csv, plots and run.json into --out.")
+    s.add_argument("study", help="study file (.toml)")
+    s.add_argument("--out", default="out/study", help="output directory (default: out/study)")
+    s.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="address of a running Dask scheduler, e.g. tcp://127.0.0.1:8786 (default: a LocalCluster)")
+    s.add_argument("--workers", type=_positive_int, default=None,
+                   help="workers of the LocalCluster (default: the cores of this machine)")
+    s.add_argument("--no-plots", action="store_true", help="summary CSV and store only")
+    s.add_argument("--quiet", action="store_true", help="no progress output")
+    s.set_defaults(func=_cmd_study)
 
     c = sub.add_parser("convergence", help="time against error over a ladder of fidelities",
                        description="Runs a ladder of fidelities (flank element size, contact grid, near-field "

@@ -15,7 +15,7 @@ from geometry.cylindrical import arc_length
 from .model import PairModel
 from .tca import flank_gaps, unloaded_tca
 
-__all__ = ["Fidelity", "LoadedModel", "prepare", "hertz_line"]
+__all__ = ["Fidelity", "LoadedModel", "BodyPlan", "plan_bodies", "prepare", "hertz_line"]
 
 
 @dataclass(frozen=True)
@@ -83,9 +83,22 @@ def _teeth_in_mesh(model: PairModel, rolls: np.ndarray, cap: float):
     return tca, teeth1, tuple(sorted(g2))
 
 
-def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, cache_dir=None,
-            progress=None) -> LoadedModel:
-    """Choose the teeth in mesh over ``rolls`` and compute both bodies' compliance (the costly step)."""
+@dataclass(frozen=True)
+class BodyPlan:
+    """What :func:`prepare` computes before the costly step: the teeth in mesh, both bodies' compliance specs
+    and the nominal Hertz contact. Cheap (an unloaded TCA); the specs and profiles fix the FE bodies."""
+    teeth1: tuple[int, ...]
+    teeth2: tuple[int, ...]
+    spec1: ComplianceSpec
+    spec2: ComplianceSpec
+    b_nom: float
+    R_nom: float
+    torque_nom: float
+    t_tca: float
+
+
+def plan_bodies(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, progress=None) -> BodyPlan:
+    """Choose the teeth in mesh over ``rolls`` at ``torque`` (N mm) and the compliance spec of each body."""
     say = progress or (lambda m: None)
     case = model.case
     t0 = time.perf_counter()
@@ -101,14 +114,34 @@ def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, c
     cap = 3.0 * w_nom / 14.0e3 + 0.01
     _, teeth1, teeth2 = _teeth_in_mesh(model, rolls, cap)
     say(f"teeth in mesh: pinion {list(teeth1)}, gear {list(teeth2)}; modelled with one neighbour each side")
-    timings = {"tca": time.perf_counter() - t0}
 
     def spec(teeth, side, r_range, r_bore, web):
         return ComplianceSpec(teeth=tuple(range(min(teeth) - 1, max(teeth) + 2)), loaded=teeth, side=side,
                               r_range=r_range, grid=fid.grid, face_width=b, r_bore=r_bore, web=web, h_flank=fid.h_flank,
                               h_body=fid.h_body, depth=fid.depth, young=case.young, poisson=case.poisson)
-    body1 = body_compliance(p1, spec(teeth1, +1, model.pinion_range(), model.r_bore1, model.web1), cache_dir, say)
-    body2 = body_compliance(p2, spec(teeth2, model.gear_side, model.gear_range(), model.r_bore2, model.web2), cache_dir, say)
+    return BodyPlan(teeth1, teeth2, spec(teeth1, +1, model.pinion_range(), model.r_bore1, model.web1),
+                    spec(teeth2, model.gear_side, model.gear_range(), model.r_bore2, model.web2),
+                    b_nom, R_nom, torque, time.perf_counter() - t0)
+
+
+def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, cache_dir=None,
+            progress=None, bodies: tuple[BodyCompliance, BodyCompliance] | None = None,
+            plan: BodyPlan | None = None) -> LoadedModel:
+    """Choose the teeth in mesh over ``rolls`` and compute both bodies' compliance (the costly step).
+
+    ``bodies``, when given, are the two compliances of these very bodies computed before (the same
+    :func:`plan_bodies` specs and profiles); they are used as they are and nothing is computed. ``plan``, when
+    given, is the :func:`plan_bodies` of these very arguments, computed before."""
+    say = progress or (lambda m: None)
+    plan = plan or plan_bodies(model, fid, rolls, torque, say)
+    timings = {"tca": plan.t_tca}
+    if bodies is None:
+        body1 = body_compliance(model.pinion, plan.spec1, cache_dir, say)
+        body2 = body_compliance(model.gear, plan.spec2, cache_dir, say)
+    else:
+        body1, body2 = bodies
+        if body1.spec != plan.spec1 or body2.spec != plan.spec2:
+            raise ValueError("prepare: the given bodies were computed for other compliance specs")
     for name in ("mesh", "assembly", "factorisation", "setup", "solves"):
         timings[name] = body1.timings.get(name, 0) + body2.timings.get(name, 0)
-    return LoadedModel(model, fid, teeth1, teeth2, body1, body2, b_nom, R_nom, torque, timings)
+    return LoadedModel(model, fid, plan.teeth1, plan.teeth2, body1, body2, plan.b_nom, plan.R_nom, torque, timings)

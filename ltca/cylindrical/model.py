@@ -83,7 +83,8 @@ def _modification(m, profile: ToothProfile, name: str) -> FlankModification:
         lo, hi = (r_tip, rf) if profile.internal else (rf, r_tip)
         slope += profile_slope_from_roll_ratio(m.roll_ratio_error, profile.r_base, lo, hi)
     return FlankModification(m.tip_relief, start, m.tip_relief_exponent, m.profile_crowning, m.lead_crowning,
-                             m.lead_slope, m.pitch_errors, slope)
+                             m.lead_slope, m.pitch_errors, slope, profile_form=m.profile_form,
+                             lead_form=m.lead_form)
 
 
 def _profile(case: CylindricalCase, member: Member, beta: float, name: str) -> ToothProfile:

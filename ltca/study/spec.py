@@ -1,0 +1,269 @@
+"""Study files: a base case and its variations, validated, expanded into variants.
+
+A study TOML (paths relative to the study file)::
+
+    [study]
+    name = "FZG C14 torque x misalignment"
+    case = "../cases/fzg_c14.toml"       # the base case
+    torques_nm = [50, 100, 200]           # the torque dimension (or "load.torque_nm" in [grid]; else the case's)
+
+    [set]                                 # fixed overrides of the base case, dotted case keys
+    "analysis.positions" = 16
+
+    [grid]                                # full factorial over any case keys
+    "assembly.lead_misalignment_um" = [0, 10, 20]
+
+    [[variants]]                          # named variants (times the grid)
+    name = "crowned"
+    "pinion.modifications.lead_crowning_um" = 5.0
+
+    [monte_carlo]                         # ISO 1328-1 tooth errors (times the variants and the grid)
+    grade = 6
+    samples = 200
+    seed = 1
+    members = ["pinion", "gear"]
+
+Variants are the product of the named variants, the grid points and the Monte Carlo samples; each runs at
+every torque. A variant's id hashes everything that defines its results except the torque list (its
+resolved case and the largest torque, which sets the teeth in mesh), so a rerun finds what is done.
+A bad study file raises :class:`ltca.errors.CaseError` naming the field (exit status 2).
+
+Imports ltca.case, ltca.errors and ltca.study.montecarlo.
+"""
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..case import case_keys, parse_case, read_toml
+from ..errors import CaseError
+from .montecarlo import MEMBERS, check_members, draw_sample
+
+__all__ = ["Study", "Variant", "MonteCarlo", "set_key", "to_toml"]
+
+_SECTIONS = {"study", "set", "grid", "variants", "monte_carlo"}
+
+
+@dataclass(frozen=True)
+class MonteCarlo:
+    """A Monte Carlo sample of ISO 1328-1 tooth errors."""
+    grade: int
+    samples: int
+    seed: int
+    members: tuple[str, ...] = MEMBERS
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One variant: its id, its coordinates (the varied keys' values) and its resolved case (TOML dict)."""
+    id: str
+    index: int
+    name: str
+    coords: dict
+    case: dict
+    drawn: dict = field(default_factory=dict)
+
+
+def set_key(data: dict, key: str, value) -> None:
+    """Set dotted case key ``key`` of a case dict (as read from TOML) in place, making tables as needed."""
+    *path, last = key.split(".")
+    for p in path:
+        data = data.setdefault(p, {})
+    data[last] = copy.deepcopy(value)
+
+
+def _check_key(key: str, where: str) -> None:
+    keys = case_keys()
+    if key not in keys:
+        near = sorted(k for k in keys if k.split(".")[-1] == key.split(".")[-1])
+        raise CaseError(where, key, "unknown key to vary: a dotted case key such as 'load.torque_nm' or "
+                        "'pinion.modifications.lead_crowning_um'" + (f" (did you mean {near}?)" if near else ""))
+    if key in ("load.torques_nm", "load.driver"):
+        raise CaseError(where, key, "not variable; vary 'load.torque_nm' or give [study] torques_nm")
+
+
+def _table(data: dict, name: str, file: str) -> dict:
+    raw = data.get(name, {})
+    if not isinstance(raw, dict):
+        raise CaseError(name, raw, "a table", file)
+    return raw
+
+
+def _torques(values, where: str, file: str) -> tuple[float, ...]:
+    if not isinstance(values, list) or not values:
+        raise CaseError(where, values, "a non-empty list of torques in (0, 1e6] N m", file)
+    for i, t in enumerate(values):
+        if isinstance(t, bool) or not isinstance(t, (int, float)) or not 0 < t <= 1e6:
+            raise CaseError(f"{where}[{i}]", t, "a number in (0, 1e6] N m", file)
+    return tuple(float(t) for t in values)
+
+
+@dataclass(frozen=True)
+class Study:
+    """A validated study: the base case (``[set]`` applied) and its variations."""
+    name: str
+    base: dict
+    torques: tuple[float, ...]                # N m
+    grid: dict                                # dotted key -> list of values (torque excluded)
+    variants: tuple[dict, ...]                # named variants: {"name": ..., dotted key: value}
+    monte_carlo: MonteCarlo | None = None
+    file: str | None = None
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> "Study":
+        """Read and validate a study file."""
+        path = Path(path)
+        data = read_toml(path)
+        return cls.from_dict(data, path.parent, str(path))
+
+    @classmethod
+    def from_dict(cls, data: dict, base_dir: str | Path = ".", file: str | None = None) -> "Study":
+        """Validate a study given as a dict (as read from TOML); ``base_dir`` resolves the case path."""
+        extra = set(data) - _SECTIONS
+        if extra:
+            raise CaseError(sorted(extra)[0], "...", f"unknown table; allowed are {sorted(_SECTIONS)}", file)
+        st = _table(data, "study", file)
+        unknown = set(st) - {"name", "case", "torques_nm", "description"}
+        if unknown:
+            raise CaseError(f"study.{sorted(unknown)[0]}", st[sorted(unknown)[0]],
+                            "unknown key; allowed are case, name, description, torques_nm", file)
+        if not isinstance(st.get("case"), str):
+            raise CaseError("study.case", st.get("case"), "the base case file (.toml), relative to the study", file)
+        case_path = Path(base_dir) / st["case"]
+        if not case_path.is_file():
+            raise CaseError("study.case", st["case"], f"an existing case file (looked for {case_path})", file)
+        base = read_toml(case_path)
+        for key, value in _table(data, "set", file).items():
+            _check_key(key, f"set.{key}")
+            set_key(base, key, value)
+        grid = {}
+        torques = None
+        for key, values in _table(data, "grid", file).items():
+            _check_key(key, f"grid.{key}")
+            if not isinstance(values, list) or not values:
+                raise CaseError(f"grid.{key}", values, "a non-empty list of values (an empty grid has no variant)",
+                                file)
+            if key == "load.torque_nm":
+                torques = _torques(values, f"grid.{key}", file)
+            else:
+                grid[key] = list(values)
+        if "torques_nm" in st:
+            if torques is not None:
+                raise CaseError("study.torques_nm", st["torques_nm"], "given once: here or as grid 'load.torque_nm'",
+                                file)
+            torques = _torques(st["torques_nm"], "study.torques_nm", file)
+        raw_variants = data.get("variants", [])
+        if not isinstance(raw_variants, list) or any(not isinstance(v, dict) for v in raw_variants):
+            raise CaseError("variants", raw_variants, "an array of tables [[variants]]", file)
+        if "variants" in data and not raw_variants:
+            raise CaseError("variants", raw_variants, "at least one [[variants]] table", file)
+        names = set()
+        for i, v in enumerate(raw_variants):
+            name = v.get("name", f"variant{i}")
+            if not isinstance(name, str) or name in names:
+                raise CaseError(f"variants[{i}].name", name, "a string naming the variant, unique", file)
+            names.add(name)
+            for key in v:
+                if key != "name":
+                    _check_key(key, f"variants[{i}].{key}")
+                    if key.startswith("load."):
+                        raise CaseError(f"variants[{i}].{key}", v[key], "not a per-variant key: the torques are a "
+                                        "dimension of the study ([study] torques_nm or grid 'load.torque_nm')", file)
+        mc = None
+        if "monte_carlo" in data:
+            m = _table(data, "monte_carlo", file)
+            unknown = set(m) - {"grade", "samples", "seed", "members"}
+            if unknown:
+                raise CaseError(f"monte_carlo.{sorted(unknown)[0]}", "...",
+                                "unknown key; allowed are grade, samples, seed, members", file)
+            n = m.get("samples")
+            if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 100000:
+                raise CaseError("monte_carlo.samples", n, "the sample size, an integer in [1, 100000]", file)
+            seed = m.get("seed", 0)
+            if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+                raise CaseError("monte_carlo.seed", seed, "a non-negative integer", file)
+            mc = MonteCarlo(m.get("grade"), n, seed, check_members(m.get("members", list(MEMBERS))))
+        base_case = parse_case(base, file=str(case_path))
+        if mc is not None:
+            from .montecarlo import member_tolerances
+            for member in mc.members:
+                member_tolerances(base_case, member, mc.grade)
+        if torques is None:
+            torques = tuple(t * 1e-3 for t in base_case.torques)
+        base.setdefault("load", {}).pop("torque_nm", None)
+        base["load"]["torques_nm"] = list(torques)
+        study = cls(st.get("name", Path(file).stem if file else "study"), base, torques, grid,
+                    tuple(raw_variants), mc, file)
+        for v in study.expand():                   # every variant must be a valid case
+            parse_case(v.case, file=f"{file}: variant {v.name!r} {v.coords}" if file else None)
+        return study
+
+    @property
+    def varied_keys(self) -> list[str]:
+        """The dotted case keys varied by the named variants and the grid (not the torque)."""
+        keys = dict.fromkeys(self.grid)
+        for v in self.variants:
+            keys.update(dict.fromkeys(k for k in v if k != "name"))
+        return list(keys)
+
+    def expand(self) -> list[Variant]:
+        """All variants, in a fixed order: named variant, then grid point, then Monte Carlo sample."""
+        named = list(self.variants) or [{"name": "base"}]
+        points = [dict(zip(self.grid, vals)) for vals in itertools.product(*self.grid.values())]
+        samples = range(self.monte_carlo.samples) if self.monte_carlo else [None]
+        out = []
+        for nv, point, sample in itertools.product(named, points, samples):
+            case = copy.deepcopy(self.base)
+            coords = {k: nv.get(k, _get(self.base, k)) for k in self.varied_keys}
+            for key, value in {**{k: v for k, v in nv.items() if k != "name"}, **point}.items():
+                set_key(case, key, value)
+                coords[key] = value
+            drawn = {}
+            if sample is not None:
+                mc = self.monte_carlo
+                overrides, drawn = draw_sample(case, parse_case(case), mc.grade, mc.seed, sample, mc.members)
+                for key, value in overrides.items():
+                    set_key(case, key, value)
+                coords["sample"] = sample
+            ident = json.dumps({"case": {k: v for k, v in case.items() if k != "load"},
+                                "torque_nom": max(self.torques)}, sort_keys=True, default=str)
+            vid = hashlib.sha256(ident.encode()).hexdigest()[:16]
+            out.append(Variant(vid, len(out), nv["name"], coords, case, drawn))
+        return out
+
+
+def _get(data: dict, key: str):
+    """The value of dotted key ``key`` in a case dict, or NaN when the case leaves it to its default."""
+    for p in key.split("."):
+        if not isinstance(data, dict) or p not in data:
+            return float("nan")
+        data = data[p]
+    return data
+
+
+def _value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, list):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    raise TypeError(f"no TOML for {type(v).__name__}")
+
+
+def to_toml(data: dict, prefix: str = "") -> str:
+    """A case dict (as read from TOML: tables, scalars, lists of scalars) as TOML text, e.g. a variant's case
+    file for a standalone ``ltca run``. Floats are written exactly (``repr``)."""
+    lines = [f"{json.dumps(k)} = {_value(v)}" for k, v in data.items() if not isinstance(v, dict)]
+    out = ([f"[{prefix}]"] if prefix and lines else []) + lines
+    for k, v in data.items():
+        if isinstance(v, dict):
+            sub = to_toml(v, f"{prefix}.{json.dumps(k)}" if prefix else json.dumps(k))
+            out += [""] + [sub] if sub else []
+    return "\n".join(out)

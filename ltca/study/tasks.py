@@ -1,0 +1,159 @@
+"""The three kinds of study task, run on Dask workers: plan a variant, compute a geometry's compliance once, solve
+one (variant, torque) point. Each takes and returns plain picklable records, so any worker can run any task.
+
+- :func:`plan_variant`: the variant's pair model and the cheap part of
+  :func:`ltca.cylindrical.loaded_model.prepare` (teeth in mesh, both bodies' compliance specs), and the
+  **geometry key**: a hash of everything that fixes the two FE bodies (each body's mesh spec hash, i.e. the
+  generated tooth outline with teeth, shifts, tip, cutter, thickness; the modelled teeth, bore, rim/web, face
+  width and element sizes; and the rest of the compliance spec: loaded teeth and flank, grid, read depth,
+  Young's modulus, Poisson's ratio). Variants with the same key share one compliance.
+- :func:`compute_compliance`: both bodies' compliance of one geometry, stripped of what only the VTU writer
+  needs (mesh, factorisation, patch loads), so it is small enough to hand from worker to worker.
+- :func:`solve_point`: the contact cycle of a variant at one torque with a compliance computed before; the
+  same functions as ``ltca run`` (:func:`ltca.cylindrical.run.analyse`, ``position_dataset``, ``summary``),
+  so a point equals a standalone run of that variant.
+
+Imports ltca.case, ltca.cylindrical and fem.
+"""
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import os
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem.compliance import BodyCompliance, body_compliance, body_spec
+
+from ..case import FIDELITIES, CylindricalCase, parse_case
+from ..cylindrical.loaded_model import BodyPlan, Fidelity, plan_bodies, prepare
+from ..cylindrical.model import PairModel, build_model
+from ..cylindrical.results import position_dataset, summary
+from ..cylindrical.run import analyse, cycle_rolls
+
+__all__ = ["VariantPlan", "Compliance", "geometry_key", "plan_variant", "compute_compliance", "solve_point"]
+
+
+@dataclass(frozen=True)
+class VariantPlan:
+    """A planned variant: its geometry key and the body plan (teeth in mesh, compliance specs, Hertz)."""
+    key: str
+    plan: BodyPlan
+    seconds: float
+
+
+@dataclass(frozen=True)
+class Compliance:
+    """Both bodies' compliance of one geometry, and where and how long it was computed."""
+    key: str
+    body1: BodyCompliance
+    body2: BodyCompliance
+    seconds: float
+    pid: int
+
+
+def _setup(case_dict: dict) -> tuple[CylindricalCase, PairModel, Fidelity]:
+    case = parse_case(case_dict)
+    return case, build_model(case), Fidelity.from_preset(FIDELITIES[case.fidelity], case.module)
+
+
+def geometry_key(model: PairModel, plan: BodyPlan) -> str:
+    """SHA-256 (hex, 24 chars) of everything that changes the two FE bodies (see the module docstring).
+
+    Parameters
+    ----------
+    model : PairModel
+        The variant's pair (its generated tooth profiles).
+    plan : BodyPlan
+        Its compliance specs (:func:`ltca.cylindrical.loaded_model.plan_bodies`).
+    """
+    h = hashlib.sha256()
+    for profile, spec in ((model.pinion, plan.spec1), (model.gear, plan.spec2)):
+        h.update(body_spec(profile, spec).spec_hash.encode())
+        h.update(repr(tuple((f.name, _plain(getattr(spec, f.name))) for f in dataclasses.fields(spec))).encode())
+    return h.hexdigest()[:24]
+
+
+def _plain(v):
+    """Floats and tuples of floats in a repr that does not depend on numpy's scalar types."""
+    if isinstance(v, (tuple, list)):
+        return tuple(_plain(x) for x in v)
+    if isinstance(v, (float, np.floating)):
+        return float(v).hex()
+    if isinstance(v, np.integer):
+        return int(v)
+    return v
+
+
+def plan_variant(case_dict: dict) -> VariantPlan:
+    """Plan one variant (cheap: an unloaded TCA); see the module docstring.
+
+    Parameters
+    ----------
+    case_dict : dict
+        The variant's resolved case, as read from TOML.
+    """
+    t0 = time.perf_counter()
+    case, model, fid = _setup(case_dict)
+    plan = plan_bodies(model, fid, cycle_rolls(case.positions, case.pinion.teeth), max(case.torques))
+    return VariantPlan(geometry_key(model, plan), plan, time.perf_counter() - t0)
+
+
+def compute_compliance(case_dict: dict, vplan: VariantPlan) -> Compliance:
+    """Both bodies' compliance of the variant's geometry (the costly step, once per geometry key).
+
+    Parameters
+    ----------
+    case_dict : dict
+        Any variant of that geometry (resolved case, as read from TOML).
+    vplan : VariantPlan
+        Its plan.
+    """
+    t0 = time.perf_counter()
+    _, model, _ = _setup(case_dict)
+    bodies = []
+    for profile, spec in ((model.pinion, vplan.plan.spec1), (model.gear, vplan.plan.spec2)):
+        b = body_compliance(profile, spec)
+        bodies.append(dataclasses.replace(b, mesh=None, factorization=None, patch=None))
+    return Compliance(vplan.key, bodies[0], bodies[1], time.perf_counter() - t0, os.getpid())
+
+
+def solve_point(case_dict: dict, vplan: VariantPlan, compliance: Compliance, torque_nm: float):
+    """The loaded contact of one variant over its positions at one torque, with a compliance computed before.
+
+    Parameters
+    ----------
+    case_dict : dict
+        The variant's resolved case.
+    vplan : VariantPlan
+        Its plan (the same geometry key as ``compliance``).
+    compliance : Compliance
+        Both bodies of that geometry.
+    torque_nm : float
+        Pinion torque, N m.
+
+    Returns
+    -------
+    ds : xarray.Dataset
+        :func:`ltca.cylindrical.results.position_dataset` of the point.
+    head : dict
+        Its :func:`ltca.cylindrical.results.summary` (the keys of ``summary.json``).
+    """
+    if compliance.key != vplan.key:
+        raise ValueError(f"compliance {compliance.key} handed to a variant of geometry {vplan.key}")
+    t0 = time.perf_counter()
+    case, model, fid = _setup(case_dict)
+    lm = prepare(model, fid, cycle_rolls(case.positions, case.pinion.teeth), max(case.torques),
+                 bodies=(compliance.body1, compliance.body2), plan=vplan.plan)
+    rolls = cycle_rolls(case.positions, case.pinion.teeth, case.cycles)
+    torque = torque_nm * 1e3
+    t1 = time.perf_counter()
+    results = analyse(lm, rolls, torque)
+    t_contact = time.perf_counter() - t1
+    ds = position_dataset(lm, results, torque)
+    timings = {"geometry": vplan.seconds, "compliance": compliance.seconds, "contact": t_contact,
+               "contact_per_position": t_contact / len(rolls), "total": time.perf_counter() - t0}
+    head = summary(lm, ds, timings, all(r.residual < 1e-6 for r in results))
+    return ds, head
