@@ -1,4 +1,4 @@
-"""The ``ltca`` command: run, tca, study, convergence, validate, bench, budget, chain.
+"""The ``ltca`` command: run, tca, forming, study, convergence, validate, bench, budget, chain.
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
@@ -14,7 +14,23 @@ from .errors import CaseError, ConvergenceError
 __all__ = ["main", "build_parser"]
 
 
+def _planetary(path: str) -> bool:
+    from .case import read_toml
+    return "satellite" in read_toml(path)
+
+
+def _cmd_forming(a: argparse.Namespace) -> int:
+    from .planetary.run import run_forming
+    run_forming(a.case, out=a.out)
+    return 0
+
+
 def _cmd_run(a: argparse.Namespace) -> int:
+    if _planetary(a.case):
+        from .planetary.run import run_planetary
+        run_planetary(a.case, out=a.out, fidelity=a.fidelity, n_positions=a.positions, progress=not a.quiet,
+                      cache=a.cache)
+        return 0
     from .cylindrical.run import run_case
     run_case(a.case, out=a.out, fidelity=a.fidelity, positions=a.positions, progress=not a.quiet,
              cache=a.cache)
@@ -23,6 +39,10 @@ def _cmd_run(a: argparse.Namespace) -> int:
 
 def _cmd_tca(a: argparse.Namespace) -> int:
     from .case import read_toml
+    if _planetary(a.case):
+        from .planetary.run import run_planetary_tca
+        run_planetary_tca(a.case, out=a.out, n_positions=a.positions)
+        return 0
     if "bevel" in read_toml(a.case):
         from .bevel.run import run_bevel_tca
         run_bevel_tca(a.case, out=a.out)
@@ -129,6 +149,14 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--no-plots", action="store_true", help="summary CSV and store only")
     s.add_argument("--quiet", action="store_true", help="no progress output")
     s.set_defaults(func=_cmd_study)
+    f = sub.add_parser("forming", help="satellite forming methods compared (seed 004): table, CSV, overlay plot",
+                       description="Cuts the satellite of a [satellite] case by the standard hob in three passes, "
+                                   "the disk cutter and the special hob; prints thickness against Eq. 3, tip land, "
+                                   "dedendum, fillet and the deviation from the special hob; writes forming.csv and "
+                                   "forming.png into --out.")
+    f.add_argument("case")
+    f.add_argument("--out", default=None, help="output directory for forming.csv and forming.png")
+    f.set_defaults(func=_cmd_forming)
 
     c = sub.add_parser("convergence", help="time against error over a ladder of fidelities",
                        description="Runs a ladder of fidelities (flank element size, contact grid, near-field "

@@ -1,0 +1,12 @@
+"""ltca.planetary: the eccentric planetary satellite of seed 004 in its central wheel.
+
+``case`` reads a ``[satellite]`` case (the satellite, its three forming tools, the central wheel, supports,
+torques as fractions of the ISO 6336-3 rated torque); ``model`` forms the satellite, cuts the wheel and
+places both as a cylindrical pair model at the eccentricity; ``loaded`` chooses every tooth pair that can
+close, computes both whole bodies' compliance (satellite held at its bearing seat, wheel at its housing rim)
+and solves the multi-pair contact with the cylindrical chain; ``run`` and ``report`` are the commands
+``ltca forming``, ``ltca tca`` and ``ltca run`` of such a case.
+
+May import: geometry (geometry.satellite and the cylindrical geometry), fem, ltca.case, ltca.errors,
+ltca.results, ltca.cylindrical. Nothing imports it except ltca.cli.
+"""
