@@ -33,9 +33,9 @@ import numpy as np
 
 from .cache import load_cached, store_cached
 from .section import rot2
-from .segment_gmsh import extract_mesh, polyline_distance
+from .segment_gmsh import background_size, extract_mesh, polyline_distance
 from .session import gmsh_session
-from .spec import SegmentMesh
+from .spec import SegmentMesh, outline_hash
 
 __all__ = ["GearBodySpec", "build_gear_body", "extrude_section"]
 
@@ -126,10 +126,7 @@ class GearBodySpec:
     @property
     def spec_hash(self) -> str:
         """SHA-256 (hex, 20 chars) of everything that determines the mesh."""
-        h = hashlib.sha256(_VERSION.encode())
-        for a in (self.outline, self.kind, self.side):
-            arr = np.ascontiguousarray(a, dtype=float)
-            h.update(str(arr.shape).encode() + arr.tobytes())
+        h = outline_hash(_VERSION, self.outline, self.kind, self.side)
         h.update(repr((int(self.z), tuple(int(k) for k in self.fine_teeth), float(self.r_support),
                        float(self.face_width), float(self.lead_twist), bool(self.internal), self.rim,
                        self.far_teeth, float(self.h_flank), float(self.h_body),
@@ -381,17 +378,7 @@ def _size_field(spec: GearBodySpec, fine: list[int]) -> None:
     fld.setNumber(thr, "SizeMax", h_far)
     fld.setNumber(thr, "DistMin", 0.5 * spec.h_flank)
     fld.setNumber(thr, "DistMax", 0.5 * spec.h_flank + (h_far - spec.h_flank) / _SLOPE)
-    if not spec.size_fields:
-        fld.setAsBackgroundMesh(thr)
-        return
-    tags = [thr]
-    for expr in spec.size_fields:
-        f = fld.add("MathEval")
-        fld.setString(f, "F", expr)
-        tags.append(f)
-    m = fld.add("Min")
-    fld.setNumbers(m, "FieldsList", tags)
-    fld.setAsBackgroundMesh(m)
+    background_size(thr, spec.size_fields)
 
 
 _SLOPE = 0.6

@@ -12,7 +12,7 @@ import numpy as np
 from .section import SectionPiece, rot2, section_pieces
 from .spec import SegmentSpec
 
-__all__ = ["mesh_with_gmsh", "extract_mesh", "polyline_distance"]
+__all__ = ["mesh_with_gmsh", "extract_mesh", "polyline_distance", "background_size"]
 
 _GMSH_TO_MESHIO_TET10 = np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8])
 _FLIP_TRI6 = np.array([0, 2, 1, 5, 4, 3])
@@ -118,11 +118,20 @@ def _set_size_field(spec: SegmentSpec, fine: list[int]) -> None:
     fld.setNumber(thr, "SizeMax", spec.h_body)
     fld.setNumber(thr, "DistMin", d_min)
     fld.setNumber(thr, "DistMax", d_min + (spec.h_body - spec.h_flank) / 0.3)
-    if not spec.size_fields:
-        fld.setAsBackgroundMesh(thr)
+    background_size(thr, spec.size_fields)
+
+
+def background_size(field: int, expressions: tuple[str, ...] = ()) -> None:
+    """Make gmsh size field ``field``, or its minimum with the ``MathEval`` size ``expressions`` (in x, y, z, mm),
+    the background mesh size of the current model."""
+    import gmsh
+
+    fld = gmsh.model.mesh.field
+    if not expressions:
+        fld.setAsBackgroundMesh(field)
         return
-    tags = [thr]
-    for expr in spec.size_fields:
+    tags = [field]
+    for expr in expressions:
         f = fld.add("MathEval")
         fld.setString(f, "F", expr)
         tags.append(f)

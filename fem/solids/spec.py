@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["SegmentSpec", "SegmentMesh"]
+__all__ = ["SegmentSpec", "SegmentMesh", "outline_hash"]
 
 _VERSION = "mesh-1"                    # bump when the meshing recipe changes (invalidates caches)
 
@@ -120,11 +120,7 @@ class SegmentSpec:
     @property
     def spec_hash(self) -> str:
         """SHA-256 (hex, 20 chars) of everything that determines the mesh."""
-        h = hashlib.sha256(_VERSION.encode())
-        for a in (self.outline, self.kind, self.side):
-            arr = np.ascontiguousarray(a, dtype=float)
-            h.update(str(arr.shape).encode())
-            h.update(arr.tobytes())
+        h = outline_hash(_VERSION, self.outline, self.kind, self.side)
         h.update(repr((int(self.z), tuple(int(k) for k in self.teeth), float(self.r_bore),
                        float(self.face_width), float(self.lead_twist), bool(self.internal),
                        float(self.h_flank), float(self.h_body), int(self.order))).encode())
@@ -163,3 +159,13 @@ class SegmentMesh:
     def n_dofs(self) -> int:
         """Displacement degrees of freedom, 3 per node."""
         return 3 * len(self.nodes)
+
+
+def outline_hash(version: str, *arrays: np.ndarray):
+    """A SHA-256 object fed with a recipe ``version`` and the shapes and float bytes of ``arrays``."""
+    h = hashlib.sha256(version.encode())
+    for a in arrays:
+        arr = np.ascontiguousarray(a, dtype=float)
+        h.update(str(arr.shape).encode())
+        h.update(arr.tobytes())
+    return h
