@@ -227,6 +227,8 @@ def _member(data: dict, name: str, file: str | None) -> Member:
 
 def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
     """Validate a case given as a dict (as read from TOML) and convert it to internal units."""
+    from .validation import check_kind
+    check_kind(data, "cylindrical", file)
     extra = set(data) - _TOP
     if extra:
         key = sorted(extra)[0]

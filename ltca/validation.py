@@ -264,3 +264,16 @@ def read_case_file(path: str | Path) -> dict:
     if _depth(data) > MAX_DEPTH:
         raise CaseError("file", path.name, f"arrays or tables nested at most {MAX_DEPTH} deep", str(path))
     return data
+
+
+#: case kinds by their characteristic top-level tables, and the command that reads them
+KINDS = {"cylindrical": ({"gear_pair", "pinion", "gear"}, "ltca run / ltca tca"), "bevel": ({"bevel"}, "ltca tca"),
+         "budget": ({"budget", "member"}, "ltca budget"), "chain": ({"chain", "workpiece"}, "ltca chain")}
+
+
+def check_kind(data: dict, expected: str, file: str | None = None) -> None:
+    """A case of another kind is named in one line (its tables are not dumped)."""
+    found = [k for k, (keys, _) in KINDS.items() if keys & set(data)]
+    if found and expected not in found:
+        raise CaseError("file", f"a {found[0]} case", f"a {expected} case here; read it with "
+                        f"`{KINDS[found[0]][1]}`", file)

@@ -14,7 +14,7 @@ from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
-from ..validation import DesignError, Int, Num, Str, Table, check_table
+from ..validation import DesignError, Int, Num, Str, Table, check_kind, check_table
 
 __all__ = ["load_bevel_case"]
 
@@ -50,6 +50,7 @@ def load_bevel_case(case_path: str | Path) -> dict:
     path = Path(case_path)
     data = read_toml(path)
     f = str(path)
+    check_kind(data, "bevel", f)
     c = check_table(data, _CASE, "", f)
     b = c["bevel"]
     if b["gear_teeth"] < b["pinion_teeth"]:

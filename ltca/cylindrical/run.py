@@ -110,18 +110,18 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
         raise CaseError("--fidelity", fid_name, f"one of {sorted(FIDELITIES)}")
     n_pos = positions or case.positions
     check_run_size(case, n_pos, FIDELITIES[fid_name], max_output_gb)
-    store = None
-    if write:
-        rd = stack.enter_context(RunDir(out, f"ltca run {case_path}", signature_of(
-            case_path, fidelity=fid_name, positions=n_pos), resume=resume))
-        store = PositionStore(rd.out)
     t0 = time.perf_counter()
     model = build_model(case)
     check_contact(model, str(case_path))
+    t_geom = time.perf_counter() - t0
+    store = None
+    if write:           # the output folder: checked, locked and cleaned before any FE work
+        rd = stack.enter_context(RunDir(out, f"ltca run {case_path}", signature_of(
+            case_path, fidelity=fid_name, positions=n_pos), resume=resume))
+        store = PositionStore(rd.out)
     warnings = design_warnings(model)
     for w in warnings:
         print(f"ltca run: warning: {w}", file=sys.stderr)
-    t_geom = time.perf_counter() - t0
     fid = Fidelity.from_preset(FIDELITIES[fid_name], case.module)
     rolls = cycle_rolls(n_pos, case.pinion.teeth, case.cycles)
     say(f"{case.name}: {n_pos} positions per cycle x {case.cycles} cycle(s), fidelity '{fid_name}' "

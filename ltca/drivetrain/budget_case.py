@@ -13,7 +13,7 @@ import numpy as np
 from ltca.drivetrain.budget_model import (DEG, BallSplineMember, DriveTrain, MeshMember, Member, ShaftMember,
                                           TorsionMember)
 from ltca.errors import CaseError
-from ltca.validation import Int, List, Num, Str
+from ltca.validation import Int, List, Num, Str, check_kind
 
 __all__ = ["load_budget_case", "load_backlash_table"]
 
@@ -77,8 +77,10 @@ _MEMBER_KEYS = {
 
 
 def _member(tab: dict, where: str) -> Member:
+    if not isinstance(tab, dict):
+        raise CaseError(where, tab, "a [[member]] table")
     kind = tab.get("kind")
-    if kind not in _MEMBER_KEYS:
+    if not isinstance(kind, str) or kind not in _MEMBER_KEYS:
         raise CaseError(f"{where}.kind", kind, f"one of {sorted(_MEMBER_KEYS)}")
     name = tab.get("name")
     if not isinstance(name, str) or not name.strip() or len(name) > 200:
@@ -122,6 +124,7 @@ def load_budget_case(path: str) -> tuple[DriveTrain, np.ndarray]:
     """
     from ..case import read_toml
     doc = read_toml(path)
+    check_kind(doc, "budget", path)
     try:
         _known(doc, {"budget", "member", "backlash"}, "case")
         head = doc.get("budget")

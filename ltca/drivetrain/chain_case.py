@@ -11,6 +11,7 @@ import numpy as np
 from ltca.drivetrain.budget_case import _known, _num, _text
 from ltca.drivetrain.chain_model import DEG, LINKS, Chain, ChainElement, evaluate_chain
 from ltca.errors import CaseError
+from ltca.validation import check_kind
 
 __all__ = ["load_chain_case"]
 
@@ -37,7 +38,7 @@ def _element(tab: dict, where: str, first: bool) -> ChainElement:
         raise CaseError(f"{where}.name", name, "a non-empty string of at most 200 characters")
     _text(tab, "note", where)
     link = tab.get("link")
-    if link not in LINKS or (link == "input") != first:
+    if not isinstance(link, str) or link not in LINKS or (link == "input") != first:
         raise CaseError(f"{where}.link", link, "'input' for the first element only, else "
                         "'mesh' or 'shaft'")
     opt = {k: (_num(tab, k, where, strict=False) if k in tab else None)
@@ -57,7 +58,7 @@ def _chain(tab: dict, where: str, work: dict) -> Chain:
     _text(tab, "note", where)
     cname = _text(tab, "name", where, default=where, non_empty=True)
     kind = tab.get("kind")
-    if kind not in ("indexing", "envelope"):
+    if not isinstance(kind, str) or kind not in ("indexing", "envelope"):
         raise CaseError(f"{where}.kind", kind, "'indexing' or 'envelope'")
     zp = _int(tab, "workpiece_teeth", where)
     turn = _num(tab, "input_turn_deg", where)
@@ -91,6 +92,7 @@ def load_chain_case(path: str) -> tuple[Chain, ...]:
     """
     from ..case import read_toml
     doc = read_toml(path)
+    check_kind(doc, "chain", path)
     try:
         _known(doc, {"machine", "workpiece", "chain"}, "case")
         wp = doc.get("workpiece")
