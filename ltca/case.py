@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import CaseError
+from .validation import Num, ToothMap
 
 __all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "case_keys",
            "FIDELITIES"]
@@ -91,9 +92,9 @@ class CylindricalCase:
 # --------------------------------------------------------------------------------------------- #
 _SCHEMA: dict[str, dict[str, tuple]] = {
     # section: key -> (type, required, default, check, allowed text)
-    "case": {"name": (str, False, "case", None, "a string"),
-             "description": (str, False, "", None, "a string"),
-             "source": (str, False, "", None, "a string")},
+    "case": {"name": (str, False, "case", lambda v: 0 < len(v) <= 200, "a string of 1 to 200 characters"),
+             "description": (str, False, "", lambda v: len(v) <= 2000, "a string of at most 2000 characters"),
+             "source": (str, False, "", lambda v: len(v) <= 2000, "a string of at most 2000 characters")},
     "gear_pair": {
         "module_mm": (float, True, None, lambda v: 0.1 <= v <= 100, "a number in [0.1, 100] mm"),
         "pressure_angle_deg": (float, False, 20.0, lambda v: 10 <= v <= 35, "a number in [10, 35] deg"),
@@ -110,8 +111,8 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "teeth": (int, True, None, lambda v: 5 <= v <= 1000, "an integer in [5, 1000]"),
         "profile_shift": (float, False, 0.0, lambda v: -1.5 <= v <= 2.0, "a number in [-1.5, 2.0]"),
         "face_width_mm": (float, True, None, lambda v: 0.5 <= v <= 2000, "a number in [0.5, 2000] mm"),
-        "tip_diameter_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
-        "bore_diameter_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
+        "tip_diameter_mm": (float, False, None, lambda v: 1 <= v <= 1e5, "a number in [1, 1e5] mm"),
+        "bore_diameter_mm": (float, False, None, lambda v: 1 <= v <= 1e5, "a number in [1, 1e5] mm"),
         "internal": (bool, False, False, None, "true or false"),
         "thickness_allowance_um": (float, False, 0.0, lambda v: 0 <= v <= 2000, "a number in [0, 2000] um"),
         "rim_thickness_mm": (float, False, None, lambda v: 0 < v <= 1e4,
@@ -126,7 +127,7 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
     },
     "modifications": {
         "tip_relief_um": (float, False, 0.0, lambda v: 0 <= v <= 500, "a number in [0, 500] um"),
-        "tip_relief_start_diameter_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
+        "tip_relief_start_diameter_mm": (float, False, None, lambda v: 1 <= v <= 1e5, "a number in [1, 1e5] mm"),
         "tip_relief_exponent": (float, False, 1.0, lambda v: 1 <= v <= 3, "a number in [1, 3]"),
         "profile_crowning_um": (float, False, 0.0, lambda v: 0 <= v <= 200, "a number in [0, 200] um"),
         "lead_crowning_um": (float, False, 0.0, lambda v: 0 <= v <= 200, "a number in [0, 200] um"),
@@ -140,7 +141,7 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
                          "a number in [-200, 200] um (parabolic form deviation: + convex, - hollow)"),
     },
     "assembly": {
-        "centre_distance_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
+        "centre_distance_mm": (float, False, None, lambda v: 1 <= v <= 1e5, "a number in [1, 1e5] mm"),
         "lead_misalignment_um": (float, False, 0.0, lambda v: -500 <= v <= 500, "a number in [-500, 500] um"),
         "lead_deviation_um": (float, False, 0.0, lambda v: -500 <= v <= 500, "a number in [-500, 500] um"),
     },
@@ -149,8 +150,8 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "poisson_ratio": (float, False, 0.3, lambda v: 0.0 <= v < 0.5, "a number in [0, 0.5)"),
     },
     "load": {
-        "torque_nm": (float, False, None, lambda v: 0 < v <= 1e6, "a number in (0, 1e6] N m"),
-        "torques_nm": (list, False, None, None, "a list of numbers in (0, 1e6] N m"),
+        "torque_nm": (float, False, None, lambda v: 1e-3 <= v <= 1e6, "a number in [1e-3, 1e6] N m"),
+        "torques_nm": (list, False, None, lambda v: 1 <= len(v) <= 100, "a list of 1 to 100 numbers in [1e-3, 1e6] N m"),
         "driver": (str, False, "pinion", lambda v: v == "pinion", "'pinion' (the pinion drives)"),
     },
     "analysis": {
@@ -201,15 +202,8 @@ def _section(data: dict, name: str, schema: str, file: str | None, required: boo
 
 def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
     m = _section({name: raw}, name, "modifications", file)
-    errors = []
-    for k, v in m["pitch_errors_um"].items():
-        try:
-            tooth = int(k)
-        except ValueError:
-            raise CaseError(f"{name}.pitch_errors_um.{k}", v, "keys are tooth indices (integers)", file)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not -500 <= v <= 500:
-            raise CaseError(f"{name}.pitch_errors_um.{k}", v, "a number in [-500, 500] um", file)
-        errors.append((tooth, float(v) * 1e-3))
+    pe = ToothMap(Num(-500, 500, "um")).check(m["pitch_errors_um"], f"{name}.pitch_errors_um", file)
+    errors = [(tooth, v * 1e-3) for tooth, v in pe.items()]
     return Modifications(
         tip_relief=m["tip_relief_um"] * 1e-3, tip_relief_start_diameter=m["tip_relief_start_diameter_mm"],
         tip_relief_exponent=m["tip_relief_exponent"], profile_crowning=m["profile_crowning_um"] * 1e-3,
@@ -222,6 +216,7 @@ def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
 def _member(data: dict, name: str, file: str | None) -> Member:
     m = _section(data, name, "member", file, required=True)
     mods = _modifications(data[name].get("modifications", {}), f"{name}.modifications", file)
+    ToothMap.check_teeth(dict(mods.pitch_errors), m["teeth"], f"{name}.modifications.pitch_errors_um", file)
     if (m["rim_thickness_mm"] is None) != (m["web_thickness_mm"] is None):
         key = "web_thickness_mm" if m["web_thickness_mm"] is None else "rim_thickness_mm"
         raise CaseError(f"{name}.{key}", None, "rim_thickness_mm and web_thickness_mm are given together "
@@ -240,6 +235,8 @@ def _member(data: dict, name: str, file: str | None) -> Member:
 
 def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
     """Validate a case given as a dict (as read from TOML) and convert it to internal units."""
+    from .validation import check_kind
+    check_kind(data, "cylindrical", file)
     extra = set(data) - _TOP
     if extra:
         key = sorted(extra)[0]
@@ -255,13 +252,15 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
     ana = _section(data, "analysis", "analysis", file)
     if pinion.internal:
         raise CaseError("pinion.internal", True, "the pinion must be external (false)", file)
+    if load["torque_nm"] is not None and load["torques_nm"] is not None:
+        raise CaseError("load.torques_nm", load["torques_nm"], "give torque_nm or torques_nm, not both", file)
     if load["torque_nm"] is None and load["torques_nm"] is None:
         raise CaseError("load.torque_nm", None, "give torque_nm (N m) or torques_nm (list of N m)", file)
     if load["torques_nm"] is not None:
         torques = load["torques_nm"]
         for i, t in enumerate(torques):
-            if isinstance(t, bool) or not isinstance(t, (int, float)) or not 0 < t <= 1e6:
-                raise CaseError(f"load.torques_nm[{i}]", t, "a number in (0, 1e6] N m", file)
+            if isinstance(t, bool) or not isinstance(t, (int, float)) or not 1e-3 <= t <= 1e6:
+                raise CaseError(f"load.torques_nm[{i}]", t, "a number in [1e-3, 1e6] N m", file)
         if not torques:
             raise CaseError("load.torques_nm", torques, "a non-empty list of torques in N m", file)
     else:
@@ -298,14 +297,10 @@ def case_keys() -> dict[str, str]:
 
 
 def read_toml(path: str | Path) -> dict:
-    """Read a case file as a dict; a missing file or broken TOML is a CaseError (exit status 2)."""
-    path = Path(path)
-    if not path.is_file():
-        raise CaseError("CASE", str(path), "an existing case file (.toml)")
-    try:
-        return tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError("file", path.name, f"valid TOML ({exc})", str(path)) from None
+    """Read a case file as a dict; a missing file, non-UTF-8 bytes, broken TOML or deep nesting is a CaseError
+    (exit status 2). One reader for every case kind: :func:`ltca.validation.read_case_file`."""
+    from .validation import read_case_file
+    return read_case_file(path)
 
 
 def load_case(path: str | Path) -> CylindricalCase:

@@ -33,7 +33,7 @@ def _cmd_run(a: argparse.Namespace) -> int:
         return 0
     from .cylindrical.run import run_case
     run_case(a.case, out=a.out, fidelity=a.fidelity, positions=a.positions, progress=not a.quiet,
-             cache=a.cache)
+             cache=a.cache, resume=a.resume, max_output_gb=a.max_output_gb)
     return 0
 
 
@@ -112,6 +112,15 @@ def _positive_int(text: str) -> int:
     return v
 
 
+def _positions(text: str) -> int:
+    """Mesh positions per cycle on the command line: capped as analysis.positions in a case file."""
+    from .sizing import MAX_POSITIONS
+    v = _positive_int(text)
+    if v > MAX_POSITIONS:
+        raise argparse.ArgumentTypeError(f"{v}: must be in [1, {MAX_POSITIONS}] (as analysis.positions)")
+    return v
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="ltca", description="Finite-element loaded tooth contact analysis of gears.")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
@@ -122,7 +131,11 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("case", help="case file (.toml)")
     r.add_argument("--out", default="out", help="output directory (default: out)")
     r.add_argument("--fidelity", choices=["coarse", "default", "fine"], help="override the case's fidelity")
-    r.add_argument("--positions", type=_positive_int, help="mesh positions per cycle (override)")
+    r.add_argument("--positions", type=_positions, help="mesh positions per cycle (override, at most 2000)")
+    r.add_argument("--resume", action="store_true",
+                   help="take over the positions an interrupted run on the same --out finished; compute the rest")
+    r.add_argument("--max-output-gb", type=float, default=2.0, metavar="GB",
+                   help="refuse a run whose results and memory are estimated above this (default 2 GB)")
     r.add_argument("--cache", default=None, help="directory for the mesh cache (default: none, cold run)")
     r.add_argument("--quiet", action="store_true", help="no progress output")
     r.set_defaults(func=_cmd_run)
@@ -133,7 +146,7 @@ def build_parser() -> argparse.ArgumentParser:
                                    "and the TCA of both flanks, with a Gleason-style settings summary.")
     t.add_argument("case")
     t.add_argument("--out", default=None, help="output directory for summary.json and plots")
-    t.add_argument("--positions", type=_positive_int, help="mesh positions per cycle (override)")
+    t.add_argument("--positions", type=_positions, help="mesh positions per cycle (override, at most 2000)")
     t.set_defaults(func=_cmd_tca)
 
     s = sub.add_parser("study", help="load-case and tolerance studies on Dask (grid, variants, ISO 1328 Monte Carlo)",
@@ -164,7 +177,7 @@ def build_parser() -> argparse.ArgumentParser:
                                    "peak pressure and root stress relative to the finest.")
     c.add_argument("case")
     c.add_argument("--out", default="out/convergence")
-    c.add_argument("--positions", type=_positive_int, default=8)
+    c.add_argument("--positions", type=_positions, default=8)
     c.add_argument("--quiet", action="store_true")
     c.set_defaults(func=_cmd_convergence)
 
@@ -197,7 +210,7 @@ def build_parser() -> argparse.ArgumentParser:
                                     "the pitch-point error against Hertz.")
     be.add_argument("case")
     be.add_argument("--repeat", type=_positive_int, default=3)
-    be.add_argument("--positions", type=_positive_int)
+    be.add_argument("--positions", type=_positions)
     be.add_argument("--fidelity", choices=["coarse", "default", "fine"])
     be.set_defaults(func=_cmd_bench)
 
@@ -228,6 +241,23 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return 130
+    except Exception as exc:  # noqa: BLE001 - the one place that sorts every failure into an exit status
+        return _unexpected(args.command, exc)
+
+
+def _unexpected(command: str, exc: BaseException) -> int:
+    """Exceptions that are not CaseError/ConvergenceError: a user's design the geometry cannot make (exit 2, with
+    the fields and advice), a full disk (exit 2), a solver that did not converge (exit 3), or a bug (traceback)."""
+    from .exit_codes import classify
+    status, message = classify(exc)
+    if status == 1:
+        import traceback
+        traceback.print_exc()
+        print(f"ltca {command}: internal error ({type(exc).__name__}); this is a bug: please report it with the "
+              "case file and the command line", file=sys.stderr)
+        return 1
+    print(f"ltca {command}: {'error' if status == 2 else 'not converged'}: {message}", file=sys.stderr)
+    return status
 
 
 if __name__ == "__main__":

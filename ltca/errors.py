@@ -20,7 +20,15 @@ class CaseError(ValueError):
     def __init__(self, field: str, value: object, allowed: str, file: str | None = None):
         self.field, self.value, self.allowed, self.file = field, value, allowed, file
         where = f"{file}: " if file else ""
-        super().__init__(f"{where}field '{field}' = {value!r}: {allowed}")
+        super().__init__(f"{where}field '{field}' = {_short(value)}: {allowed}")
+
+
+def _short(value: object, n: int = 60) -> str:
+    """The value as shown in a message: a table is not dumped, long values are cut to one short line."""
+    if isinstance(value, dict):
+        return "{table}"
+    text = repr(value)
+    return text if len(text) <= n else text[: n - 3] + "..."
 
 
 class ConvergenceError(RuntimeError):

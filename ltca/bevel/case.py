@@ -14,46 +14,34 @@ from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
+from ..validation import DesignError, Int, Num, Str, Table, check_kind, check_table
 
 __all__ = ["load_bevel_case"]
 
-_NUM = (int, float)
-# key: (type, check, words)
-_BEVEL = {
-    "pinion_teeth": (int, lambda v: 5 <= v <= 200, "an integer in [5, 200]"),
-    "gear_teeth": (int, lambda v: 5 <= v <= 500, "an integer in [5, 500], >= pinion_teeth"),
-    "module_mm": (_NUM, lambda v: 0 < v <= 100, "a number in (0, 100] mm"),
-    "face_width_mm": (_NUM, lambda v: v > 0, "a positive number, mm (at most half the outer cone distance)"),
-    "spiral_angle_deg": (_NUM, lambda v: 0 <= v <= 60, "a number in [0, 60] deg"),
-    "pressure_angle_deg": (_NUM, lambda v: 10 <= v <= 30, "a number in [10, 30] deg"),
-    "shaft_angle_deg": (_NUM, lambda v: 0 < v < 180, "a number in (0, 180) deg"),
-    "gear_hand": (str, lambda v: v in ("left", "right"), "'left' or 'right'"),
-    "cutter_radius_mm": (_NUM, lambda v: v > 0, "a positive number, mm"),
-    "taper": (str, lambda v: v in ("standard", "uniform"), "'standard' or 'uniform'"),
-    "blank_offset_mm": (_NUM, lambda v: abs(v) <= 100, "a number in [-100, 100] mm"),
-}
-_FLANK = {
-    "path_angle_deg": (_NUM, lambda v: abs(v) < 80, "a number in (-80, 80) deg"),
-    "te_magnitude_arcsec": (_NUM, lambda v: 0 < v <= 1000, "a number in (0, 1000] arcsec"),
-    "ellipse_major_mm": (_NUM, lambda v: v > 0, "a positive number, mm"),
-}
-
-
-def _table(raw: dict, spec: dict, name: str, file: str, optional: tuple = ()) -> dict:
-    out = {}
-    for k in raw:
-        if k not in spec and not isinstance(raw[k], dict):
-            raise CaseError(f"{name}.{k}", raw[k], f"unknown key; allowed keys are {sorted(spec)}", file)
-    for k, (typ, ok, words) in spec.items():
-        if k not in raw:
-            if k in optional:
-                continue
-            raise CaseError(f"{name}.{k}", None, f"required; {words}", file)
-        v = raw[k]
-        if isinstance(v, bool) or not isinstance(v, typ) or not ok(v):
-            raise CaseError(f"{name}.{k}", v, words, file)
-        out[k] = v
-    return out
+# the bevel kind in the one validation layer (ltca.validation); ranges are those the cradle model and the
+# seed-000 synthesis are known to handle (outside them the Newton solves of generation and TCA lose the flank)
+_FLANK = Table({
+    "path_angle_deg": Num(-60, 60, "deg", required=True, note="contact-path angle eta2 on the gear flank"),
+    "te_magnitude_arcsec": Num(1, 200, "arcsec", required=True, note="parabolic TE amplitude over a cycle"),
+    "ellipse_major_mm": Num(0.5, 50, "mm", required=True, note="contact-ellipse major axis at the mean point"),
+}, required=True)
+_BEVEL = Table({
+    "pinion_teeth": Int(6, 100, required=True),
+    "gear_teeth": Int(6, 300, required=True, note=">= pinion_teeth"),
+    "module_mm": Num(0.5, 50, "mm", required=True, note="outer transverse module"),
+    "face_width_mm": Num(1, 500, "mm", required=True, note="at most 0.4 of the outer cone distance"),
+    "spiral_angle_deg": Num(15, 45, "deg", required=True),
+    "pressure_angle_deg": Num(14, 25, "deg", required=True),
+    "shaft_angle_deg": Num(45, 135, "deg", default=90.0),
+    "gear_hand": Str(("left", "right"), required=True),
+    "cutter_radius_mm": Num(5, 1000, "mm", required=True),
+    "taper": Str(("standard", "uniform"), default="standard"),
+    "blank_offset_mm": Num(-10, 10, "mm", default=None, note="pinion blank offset of the redesign"),
+    "working": _FLANK,
+    "coast": _FLANK,
+}, required=True)
+_CASE = Table({"bevel": _BEVEL, "case": Table({"name": Str(non_empty=True, max_len=200, default=None),
+                                               "description": Str(default=""), "source": Str(default="")})})
 
 
 def load_bevel_case(case_path: str | Path) -> dict:
@@ -62,18 +50,14 @@ def load_bevel_case(case_path: str | Path) -> dict:
     path = Path(case_path)
     data = read_toml(path)
     f = str(path)
-    raw = data.get("bevel")
-    if not isinstance(raw, dict):
-        raise CaseError("bevel", raw, "a required table [bevel]", f)
-    b = _table(raw, _BEVEL, "bevel", f, optional=("blank_offset_mm", "taper", "shaft_angle_deg"))
+    check_kind(data, "bevel", f)
+    c = check_table(data, _CASE, "", f)
+    b = c["bevel"]
     if b["gear_teeth"] < b["pinion_teeth"]:
-        raise CaseError("bevel.gear_teeth", b["gear_teeth"], _BEVEL["gear_teeth"][2], f)
+        raise CaseError("bevel.gear_teeth", b["gear_teeth"], f"at least pinion_teeth = {b['pinion_teeth']}", f)
     targets = {}
     for name, side in (("working", "concave"), ("coast", "convex")):
-        t = raw.get(name)
-        if not isinstance(t, dict):
-            raise CaseError(f"bevel.{name}", t, "a required table", f)
-        t = _table(t, _FLANK, f"bevel.{name}", f)
+        t = b[name]
         targets[side] = FlankTarget(np.deg2rad(t["path_angle_deg"]), t["te_magnitude_arcsec"] * RAD_PER_ARCSEC,
                                     float(t["ellipse_major_mm"]))
     try:
@@ -85,6 +69,7 @@ def load_bevel_case(case_path: str | Path) -> dict:
                                cutter_radius=float(b["cutter_radius_mm"]), taper=b.get("taper", "standard"))
         design_blank(basic)
     except ValueError as exc:
-        raise CaseError("bevel", "(blank)", str(exc), f) from None
-    name = data.get("case", {}).get("name", path.stem) if isinstance(data.get("case"), dict) else path.stem
+        raise DesignError(f"bevel blank: {exc}", ("bevel.face_width_mm", "bevel.module_mm", "bevel.pinion_teeth",
+                                                  "bevel.gear_teeth", "bevel.cutter_radius_mm"), file=f) from None
+    name = c["case"]["name"] or path.stem
     return dict(name=name, basic=basic, targets=targets, blank_offset=b.get("blank_offset_mm"))

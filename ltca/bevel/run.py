@@ -17,6 +17,10 @@ from geometry.bevel.separation import separation_tca
 from geometry.bevel.tca import RAD_PER_ARCSEC, BevelPair, tca, to_pitch_coords
 from geometry.bevel.undercut import undercut_check
 
+from geometry.bevel.generation import MeshingError
+from geometry.bevel.tca import ContactError
+
+from ..validation import DesignError
 from .case import load_bevel_case
 
 __all__ = ["run_bevel_tca", "plot_bevel", "bevel_benchmark"]
@@ -67,6 +71,18 @@ def run_bevel_tca(case_path: str, out: str | None = None) -> dict:
         ``design`` (first design before the blank-offset redesign, per flank).
     """
     case = load_bevel_case(case_path)
+    try:
+        return _run_bevel_tca(case, out)
+    except (ContactError, MeshingError, ValueError) as exc:
+        # the user's design (targets, blank, cutter) has no solution in the cradle model: exit 2 naming the inputs
+        side = "working" if "concave" in str(exc) else "coast" if "convex" in str(exc) else "working/coast"
+        raise DesignError(f"spiral bevel synthesis/TCA failed ({type(exc).__name__}: {str(exc)[:160]})",
+                          (f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
+                           f"bevel.{side}.ellipse_major_mm", "bevel.spiral_angle_deg", "bevel.cutter_radius_mm"),
+                          "move the targets towards the shipped case's values", file=str(case_path)) from None
+
+
+def _run_bevel_tca(case: dict, out: str | None) -> dict:
     bl = design_blank(case["basic"])
     gear = standard_gear_cut(bl)
     pin, infos = synthesize_pinion(bl, gear, case["targets"], blank_offset=case["blank_offset"])
@@ -96,7 +112,8 @@ def run_bevel_tca(case_path: str, out: str | None = None) -> dict:
         d = Path(out)
         d.mkdir(parents=True, exist_ok=True)
         summary["plots"] = plot_bevel(pair, runs, d, case["name"])
-        (d / "summary.json").write_text(json.dumps(summary, indent=2))
+        from ..outputs import write_json_atomic
+        write_json_atomic(d / "summary.json", summary)
     return summary
 
 

@@ -18,6 +18,7 @@ from geometry.pair import CylindricalPair
 
 from ..case import CylindricalCase, Member
 from ..errors import CaseError
+from ..validation import DesignError
 
 __all__ = ["PairModel", "build_model", "working_centre_distance"]
 
@@ -77,6 +78,11 @@ def _modification(m, profile: ToothProfile, name: str) -> FlankModification:
         if start >= r_tip:
             raise CaseError(f"{name}.modifications.tip_relief_start_diameter_mm", m.tip_relief_start_diameter,
                             f"smaller than the tip diameter {2 * r_tip:.3f} mm")
+        r_form = max(profile.r_form_left, profile.r_form_right)
+        if not profile.internal and start <= r_form:
+            raise CaseError(f"{name}.modifications.tip_relief_start_diameter_mm", m.tip_relief_start_diameter,
+                            f"a diameter on the active involute, between the form diameter {2 * r_form:.3f} mm and "
+                            f"the tip diameter {2 * r_tip:.3f} mm (not in the root)")
     slope = m.profile_slope
     if m.roll_ratio_error:
         rf = profile.r_form_right
@@ -100,8 +106,36 @@ def _profile(case: CylindricalCase, member: Member, beta: float, name: str) -> T
                           rho=case.rack_tip_radius)
         return generate_by_rack(blank, rack)
     except ValueError as exc:
-        raise CaseError(name, f"z={member.teeth}, x={member.profile_shift}, d_tip={member.tip_diameter}",
-                        f"a tooth that can be generated: {exc}") from None
+        raise _generation_error(str(exc), name, member.internal) from None
+
+
+#: what failed in the generation (a phrase of geometry.involute's message) -> the quantity and the input fields
+_GENERATION = (
+    ("pointed tooth", "tooth thickness at the tip <= 0 (pointed tooth)", ("tip_diameter_mm", "profile_shift")),
+    ("fillets meet", "undercut so deep that the two fillets meet", ("profile_shift", "teeth", "cutter.tip_radius")),
+    ("no active involute", "no active involute (form diameter above the tip)",
+     ("profile_shift", "teeth", "tip_diameter_mm", "cutter.tip_radius")),
+    ("too large: the two tip edges", "rack tip land < 0 (the tip radius does not fit on the rack tooth)",
+     ("cutter.tip_radius", "gear_pair.pressure_angle_deg", "cutter.addendum")),
+    ("root radius", "root diameter <= 0", ("profile_shift", "teeth", "cutter.addendum")),
+    ("above the rack root line", "tip diameter above what the rack can cut",
+     ("tip_diameter_mm", "profile_shift", "cutter.dedendum")),
+    ("must exceed the root and base", "tip diameter not above the root and base diameters",
+     ("tip_diameter_mm", "profile_shift")),
+)
+
+
+def _generation_error(msg: str, name: str, internal: bool) -> DesignError:
+    """A tooth that cannot be generated: the quantity that failed and the input fields that drive it."""
+    for phrase, quantity, keys in _GENERATION:
+        if phrase in msg:
+            break
+    else:
+        quantity, keys = "the tooth cannot be generated", ("teeth", "profile_shift", "tip_diameter_mm",
+                                                           "cutter.shaper_teeth" if internal else "cutter.tip_radius")
+    fields = tuple(k if "." in k else f"{name}.{k}" for k in keys)
+    detail = msg.replace("GearBlank.", "").replace("RackCutter.", "cutter ")[:140]
+    return DesignError(f"{name}: {quantity} ({detail})", fields, "")
 
 
 def build_model(case: CylindricalCase) -> PairModel:

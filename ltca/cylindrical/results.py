@@ -11,7 +11,11 @@ import xarray as xr
 from .loaded import PositionResult, te_arcsec
 from .loaded_model import LoadedModel
 
-__all__ = ["position_dataset", "summary", "pressure_on_lattice", "mesh_stiffness"]
+__all__ = ["position_dataset", "summary", "pressure_on_lattice", "mesh_stiffness", "MAX_LATTICE"]
+
+#: profile bins of the pressure lattice at most (the contact cells are finer at light loads; the lattice keeps
+#: the largest cell pressure of each bin, so no peak is lost)
+MAX_LATTICE = 240
 
 
 def pressure_on_lattice(lm: LoadedModel, res: PositionResult) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -23,7 +27,7 @@ def pressure_on_lattice(lm: LoadedModel, res: PositionResult) -> tuple[np.ndarra
     model, fid = lm.model, lm.fid
     rb = model.pinion.r_base
     s_lo, s_hi = (arc_length(r, rb) for r in model.pinion_range())
-    ds = res.ds
+    ds = max(res.ds, (s_hi - s_lo) / MAX_LATTICE)   # a tiny Hertz width (tiny torque) must not blow up the file
     n_lat = max(1, int(np.floor((s_hi - s_lo) / ds)))
     field = np.zeros((len(lm.teeth1), n_lat, fid.slices))
     t_idx = np.searchsorted(np.asarray(lm.teeth1), res.tooth)

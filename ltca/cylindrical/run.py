@@ -18,6 +18,7 @@ from .loaded_model import Fidelity, LoadedModel, prepare
 from .model import build_model
 from .results import position_dataset, summary
 from .tca import ARCSEC_PER_RAD, unloaded_tca
+from .warnings import pressure_warnings
 
 __all__ = ["run_case", "run_tca", "cycle_rolls", "analyse"]
 
@@ -35,12 +36,21 @@ def _progress(enabled: bool):
     return say
 
 
+def _log_line(lm: LoadedModel, torque: float, warm: PositionResult) -> dict:
+    return {"torque_nm": torque * 1e-3, "roll_deg": float(np.degrees(warm.roll)),
+            "te_loaded_arcsec": warm.theta / lm.model.pair.ratio * ARCSEC_PER_RAD,
+            "max_pressure_mpa": warm.max_pressure,
+            "pair_load_n": {str(k): v for k, v in warm.pair_load.items()},
+            "root_stress_mpa": {"pinion": warm.root1, "gear": warm.root2}}
+
+
 def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = False,
-            log: Path | None = None) -> list[PositionResult]:
+            log: Path | None = None, store=None, it: int = 0, lines: list | None = None) -> list[PositionResult]:
     """Loaded contact at every roll angle, warm-started from the previous position.
 
     With ``log``, each finished position is appended to that JSON-lines file at once, so a crash
-    loses nothing already finished."""
+    loses nothing already finished. With ``store`` (:class:`ltca.outputs.PositionStore`), each finished position is
+    also kept whole, and positions already in the store (``--resume``) are taken over instead of computed."""
     from threadpoolctl import threadpool_limits
 
     from .tca import split_roll
@@ -50,24 +60,48 @@ def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = 
         from tqdm import tqdm
         steps = tqdm(steps, desc=f"positions at {torque * 1e-3:g} N m", unit="pos", file=sys.stderr)
     warm = None
-    for r, n in steps:
+    for k, (r, n) in enumerate(steps):
+        old = store.load(it, k) if store is not None else None
+        if old is not None:
+            warm = old
+            store.taken_over += 1
+            store.dirty = True
+            lines.append(_log_line(lm, torque, warm))
+            out.append(warm)
+            continue
         # small dense factorisations: one BLAS thread is faster than two fighting for the cores
         with threadpool_limits(limits=1, user_api="blas"):
             warm = solve_position(lm, float(r), torque, warm=warm, cycle=int(n))
         out.append(warm)
-        if log is not None:
+        if store is not None:
+            if store.dirty:       # the log of the positions taken over, rewritten once before the first new one
+                store.rewrite_log(lines)
+                store.dirty = False
+            lines.append(_log_line(lm, torque, warm))
+            store.save(it, k, warm, lines[-1])
+            store.computed += 1
+        elif log is not None:
             with open(log, "a") as fh:
-                fh.write(json.dumps({"torque_nm": torque * 1e-3, "roll_deg": float(np.degrees(warm.roll)),
-                                     "te_loaded_arcsec": warm.theta / lm.model.pair.ratio * ARCSEC_PER_RAD,
-                                     "max_pressure_mpa": warm.max_pressure,
-                                     "pair_load_n": {str(k): v for k, v in warm.pair_load.items()},
-                                     "root_stress_mpa": {"pinion": warm.root1, "gear": warm.root2}}) + "\n")
+                fh.write(json.dumps(_log_line(lm, torque, warm)) + "\n")
     return out
 
 
 def run_case(case_path: str, out: str = "out", fidelity: str | None = None, positions: int | None = None,
-             progress: bool = True, cache: str | None = None, write: bool = True) -> dict:
-    """Loaded analysis of a case over one mesh cycle; writes summary.json, results.nc, plots, VTU."""
+             progress: bool = True, cache: str | None = None, write: bool = True, resume: bool = False,
+             max_output_gb: float = 2.0) -> dict:
+    """Loaded analysis of a case over one mesh cycle; writes summary.json, results.nc, plots, VTU.
+
+    The output folder is checked and locked before any work, its status kept in run.json, every file written
+    atomically; ``resume`` takes over the positions an interrupted run finished (:mod:`ltca.outputs`)."""
+    import contextlib
+    with contextlib.ExitStack() as stack:
+        return _run_case(stack, case_path, out, fidelity, positions, progress, cache, write, resume, max_output_gb)
+
+
+def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write, resume, max_output_gb) -> dict:
+    from ..outputs import PositionStore, RunDir, signature_of
+    from ..sizing import check_run_size
+    from .warnings import check_contact, design_warnings
     t_start = time.perf_counter()
     case = load_case(case_path)
     say = _progress(progress)
@@ -75,9 +109,19 @@ def run_case(case_path: str, out: str = "out", fidelity: str | None = None, posi
     if fid_name not in FIDELITIES:
         raise CaseError("--fidelity", fid_name, f"one of {sorted(FIDELITIES)}")
     n_pos = positions or case.positions
+    check_run_size(case, n_pos, FIDELITIES[fid_name], max_output_gb)
     t0 = time.perf_counter()
     model = build_model(case)
+    check_contact(model, str(case_path))
     t_geom = time.perf_counter() - t0
+    store = None
+    if write:           # the output folder: checked, locked and cleaned before any FE work
+        rd = stack.enter_context(RunDir(out, f"ltca run {case_path}", signature_of(
+            case_path, fidelity=fid_name, positions=n_pos), resume=resume))
+        store = PositionStore(rd.out)
+    warnings = design_warnings(model)
+    for w in warnings:
+        print(f"ltca run: warning: {w}", file=sys.stderr)
     fid = Fidelity.from_preset(FIDELITIES[fid_name], case.module)
     rolls = cycle_rolls(n_pos, case.pinion.teeth, case.cycles)
     say(f"{case.name}: {n_pos} positions per cycle x {case.cycles} cycle(s), fidelity '{fid_name}' "
@@ -85,16 +129,10 @@ def run_case(case_path: str, out: str = "out", fidelity: str | None = None, posi
     lm = prepare(model, fid, cycle_rolls(n_pos, case.pinion.teeth), max(case.torques), cache_dir=cache,
                  progress=say)
     outdir = Path(out)
-    if write:
-        outdir.mkdir(parents=True, exist_ok=True)
-        log = outdir / "positions.jsonl"
-        log.unlink(missing_ok=True)
-    else:
-        log = None
-    summaries, datasets, first = [], [], None
-    for torque in case.torques:
+    summaries, datasets, first, lines = [], [], None, []
+    for it, torque in enumerate(case.torques):
         t0 = time.perf_counter()
-        results = analyse(lm, rolls, torque, progress, log)
+        results = analyse(lm, rolls, torque, progress, None, store=store, it=it, lines=lines)
         first = first or results
         t_contact = time.perf_counter() - t0
         ds = position_dataset(lm, results, torque)
@@ -104,6 +142,8 @@ def run_case(case_path: str, out: str = "out", fidelity: str | None = None, posi
                    "total": time.perf_counter() - t_start}
         converged = all(r.residual < 1e-6 for r in results)
         summaries.append(summary(lm, ds, timings, converged))
+        warnings_t = warnings + pressure_warnings(case, summaries[-1])
+        summaries[-1]["warnings"] = warnings_t
         datasets.append(ds)
         say(f"T = {torque * 1e-3:g} N m: loaded TE ptp {summaries[-1]['te_loaded_ptp_arcsec']:.2f} arcsec, "
             f"max pressure {summaries[-1]['max_contact_pressure_mpa']:.0f} MPa ({t_contact:.1f} s)")
@@ -111,18 +151,28 @@ def run_case(case_path: str, out: str = "out", fidelity: str | None = None, posi
     if len(summaries) > 1:
         head["per_torque"] = summaries
     head["timings_s"]["total"] = round(time.perf_counter() - t_start, 3)
+    for w in head.get("warnings", [])[len(warnings):]:
+        print(f"ltca run: warning: {w}", file=sys.stderr)
     if write:
         import xarray as xr
+        from ..outputs import staging, write_json_atomic
         from .report import plot_all, write_vtu
-        all_ds = xr.concat(datasets, dim="torque") if len(datasets) > 1 else datasets[0]
-        all_ds.to_netcdf(outdir / "results.nc", engine="h5netcdf")
-        write_json(outdir / "summary.json", head)
-        plot_all(datasets[0], outdir, case.name)
-        k = int(np.argmax(datasets[0].max_pressure.values))
-        r = first[k]
-        W1, W2 = weights_of(lm, r)
-        write_vtu(outdir / "pinion_loaded.vtu", lm.body1, W1.T @ r.force, rotation_z(model.phi_pitch - r.roll))
-        write_vtu(outdir / "gear_loaded.vtu", lm.body2, W2.T @ r.force, model.pair.gear_frame(model.phi_pitch - r.roll))
+        if store.dirty:                    # every position was taken over: the log in order
+            store.rewrite_log(lines)
+        head["positions_computed"], head["positions_taken_over"] = store.computed, store.taken_over
+        say(f"positions computed {store.computed}, taken over from the interrupted run {store.taken_over}")
+        # every file is written into a staging folder and renamed into place; summary.json last
+        with staging(outdir) as stage:
+            all_ds = xr.concat(datasets, dim="torque") if len(datasets) > 1 else datasets[0]
+            all_ds.to_netcdf(stage / "results.nc", engine="h5netcdf")
+            plot_all(datasets[0], stage, case.name)
+            k = int(np.argmax(datasets[0].max_pressure.values))
+            r = first[k]
+            W1, W2 = weights_of(lm, r)
+            write_vtu(stage / "pinion_loaded.vtu", lm.body1, W1.T @ r.force, rotation_z(model.phi_pitch - r.roll))
+            write_vtu(stage / "gear_loaded.vtu", lm.body2, W2.T @ r.force,
+                      model.pair.gear_frame(model.phi_pitch - r.roll))
+        write_json_atomic(outdir / "summary.json", head)
         say(f"wrote {outdir}/summary.json, results.nc, te.png, load_sharing.png, bearing_pattern.png, "
             "root_stress.png, pinion_loaded.vtu, gear_loaded.vtu")
     print(json.dumps({k: head[k] for k in ("te_loaded_ptp_arcsec", "te_unloaded_ptp_arcsec",
@@ -134,9 +184,17 @@ def run_case(case_path: str, out: str = "out", fidelity: str | None = None, posi
 
 def run_tca(case_path: str, out: str | None = None, positions: int | None = None) -> dict:
     """Unloaded TCA of a case: TE and contact path over one mesh cycle, contact ratio."""
+    from .warnings import check_contact, contact_ratio_transverse, design_warnings
+    from ..sizing import MAX_POSITIONS
     case = load_case(case_path)
     model = build_model(case)
+    check_contact(model, str(case_path))
+    warnings = design_warnings(model)
+    for w in warnings:
+        print(f"ltca tca: warning: {w}", file=sys.stderr)
     n = positions or case.positions
+    if n > MAX_POSITIONS:
+        raise CaseError("--positions", n, f"an integer in [1, {MAX_POSITIONS}] (as analysis.positions)")
     rolls = cycle_rolls(n, case.pinion.teeth)
     r = unloaded_tca(model, rolls)
     head = {"case": case.name, "positions": n, "te_unloaded_ptp_arcsec": float(np.ptp(r.te_arcsec)),
@@ -146,7 +204,8 @@ def run_tca(case_path: str, out: str | None = None, positions: int | None = None
                                                          "tooth": r.contact_tooth.tolist(),
                                                          "radius_mm": r.contact_r.tolist(),
                                                          "z_mm": r.contact_z.tolist(),
-                                                         "te_arcsec": r.te_arcsec.tolist()}}
+                                                         "te_arcsec": r.te_arcsec.tolist()},
+            "contact_ratio_tip_circles": contact_ratio_transverse(model), "warnings": warnings}
     print(f"{case.name}: eps_alpha = {r.eps_alpha:.4f}, eps_beta = {r.eps_beta:.4f}, "
           f"alpha_wt = {head['working_pressure_angle_deg']:.4f} deg, unloaded TE ptp = "
           f"{head['te_unloaded_ptp_arcsec']:.4f} arcsec")
@@ -155,8 +214,9 @@ def run_tca(case_path: str, out: str | None = None, positions: int | None = None
         print(f"{np.degrees(rolls[i]):11.3f} {r.contact_tooth[i]:5d} {r.contact_r[i]:9.4f} {r.contact_z[i]:8.3f} "
               f"{r.te_arcsec[i]:12.4f}")
     if out:
-        Path(out).mkdir(parents=True, exist_ok=True)
-        write_json(Path(out) / "summary.json", head)
+        from ..outputs import check_out_dir, write_json_atomic
+        check_out_dir(out)
+        write_json_atomic(Path(out) / "summary.json", head)
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
@@ -165,6 +225,8 @@ def run_tca(case_path: str, out: str | None = None, positions: int | None = None
         ax.set(xlabel="pinion roll from the pitch point [deg]", ylabel="unloaded TE [arcsec]", title=case.name)
         ax.grid(alpha=0.3)
         fig.tight_layout()
-        fig.savefig(Path(out) / "te_unloaded.png", dpi=110)
+        from ..outputs import atomic_path
+        with atomic_path(Path(out) / "te_unloaded.png") as tmp:
+            fig.savefig(tmp, dpi=110, format="png")
         plt.close(fig)
     return head

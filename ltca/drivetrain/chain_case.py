@@ -8,9 +8,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ltca.drivetrain.budget_case import _known, _num
+from ltca.drivetrain.budget_case import _known, _num, _text
 from ltca.drivetrain.chain_model import DEG, LINKS, Chain, ChainElement, evaluate_chain
 from ltca.errors import CaseError
+from ltca.validation import check_kind
 
 __all__ = ["load_chain_case"]
 
@@ -21,10 +22,10 @@ _CHAIN_KEYS = {"name", "kind", "workpiece_teeth", "mate_teeth", "input_turn_deg"
                "closure_tolerance", "element", "note"}
 
 
-def _int(tab: dict, key: str, where: str, lo: int = 1) -> int:
+def _int(tab: dict, key: str, where: str, lo: int = 1, hi: int = 10_000) -> int:
     val = tab.get(key)
-    if isinstance(val, bool) or not isinstance(val, int) or val < lo:
-        raise CaseError(f"{where}.{key}", val, f"an integer >= {lo}")
+    if isinstance(val, bool) or not isinstance(val, int) or not lo <= val <= hi:
+        raise CaseError(f"{where}.{key}", val, f"an integer in [{lo}, {hi}]")
     return val
 
 
@@ -33,10 +34,11 @@ def _element(tab: dict, where: str, first: bool) -> ChainElement:
         raise CaseError(where, tab, "a [[chain.element]] table")
     _known(tab, _ELEMENT_KEYS, where)
     name = tab.get("name")
-    if not isinstance(name, str) or not name:
-        raise CaseError(f"{where}.name", name, "a non-empty string")
+    if not isinstance(name, str) or not name.strip() or len(name) > 200:
+        raise CaseError(f"{where}.name", name, "a non-empty string of at most 200 characters")
+    _text(tab, "note", where)
     link = tab.get("link")
-    if link not in LINKS or (link == "input") != first:
+    if not isinstance(link, str) or link not in LINKS or (link == "input") != first:
         raise CaseError(f"{where}.link", link, "'input' for the first element only, else "
                         "'mesh' or 'shaft'")
     opt = {k: (_num(tab, k, where, strict=False) if k in tab else None)
@@ -53,8 +55,10 @@ def _element(tab: dict, where: str, first: bool) -> ChainElement:
 
 def _chain(tab: dict, where: str, work: dict) -> Chain:
     _known(tab, _CHAIN_KEYS, where)
+    _text(tab, "note", where)
+    cname = _text(tab, "name", where, default=where, non_empty=True)
     kind = tab.get("kind")
-    if kind not in ("indexing", "envelope"):
+    if not isinstance(kind, str) or kind not in ("indexing", "envelope"):
         raise CaseError(f"{where}.kind", kind, "'indexing' or 'envelope'")
     zp = _int(tab, "workpiece_teeth", where)
     turn = _num(tab, "input_turn_deg", where)
@@ -63,11 +67,12 @@ def _chain(tab: dict, where: str, work: dict) -> Chain:
     else:  # crown gear of a 90 deg pair: zd = sqrt(z1^2 + z2^2) (seed 002, Table 2)
         required = np.hypot(zp, _int(tab, "mate_teeth", where)) / zp
     els = tab.get("element")
-    if not isinstance(els, list) or len(els) < 2:
-        raise CaseError(f"{where}.element", els, "at least two [[chain.element]] tables")
+    if not isinstance(els, list) or not 2 <= len(els) <= 500:
+        raise CaseError(f"{where}.element", els if not isinstance(els, list) else f"{len(els)} tables",
+                        "2 to 500 [[chain.element]] tables")
     elements = tuple(_element(e, f"{where}.element[{i}]", i == 0) for i, e in enumerate(els))
     radius = work["mn"] * zp / (2.0 * np.cos(work["beta"]))
-    chain = Chain(str(tab.get("name", where)), kind, turn, float(required), elements, radius,
+    chain = Chain(cname, kind, turn, float(required), elements, radius,
                   _num(tab, "closure_tolerance", where, default=1e-6))
     ev = evaluate_chain(chain)
     if abs(ev.closure) > chain.closure_tolerance:
@@ -87,19 +92,26 @@ def load_chain_case(path: str) -> tuple[Chain, ...]:
     """
     from ..case import read_toml
     doc = read_toml(path)
+    check_kind(doc, "chain", path)
     try:
         _known(doc, {"machine", "workpiece", "chain"}, "case")
         wp = doc.get("workpiece")
         if not isinstance(wp, dict):
             raise CaseError("workpiece", wp, "a [workpiece] table")
         _known(wp, {"normal_module_mm", "spiral_angle_deg", "note"}, "workpiece")
+        _text(wp, "note", "workpiece")
+        if "machine" in doc:
+            _known(doc["machine"], {"name", "note"}, "machine")
+            _text(doc["machine"], "name", "machine")
+            _text(doc["machine"], "note", "machine")
         beta = _num(wp, "spiral_angle_deg", "workpiece", strict=False)
         if beta >= 90:
             raise CaseError("workpiece.spiral_angle_deg", beta, "an angle in [0, 90) deg")
         work = {"mn": _num(wp, "normal_module_mm", "workpiece"), "beta": beta * DEG}
         chains = doc.get("chain")
-        if not isinstance(chains, list) or not chains:
-            raise CaseError("chain", chains, "at least one [[chain]] table")
+        if not isinstance(chains, list) or not 1 <= len(chains) <= 100:
+            raise CaseError("chain", chains if not isinstance(chains, list) else f"{len(chains)} tables",
+                            "1 to 100 [[chain]] tables")
         return tuple(_chain(c, f"chain[{i}]", work) for i, c in enumerate(chains))
     except CaseError as exc:
         raise CaseError(exc.field, exc.value, exc.allowed, file=path) from None

@@ -142,7 +142,7 @@ class ChainEvaluation:
         """i_nominal / i_required - 1 (the change-gear approximation, a systematic ratio error)."""
         return self.i_nom / self.i_required - 1.0
 
-    def table(self) -> str:
+    def table(self) -> str:  # noqa: C901
         """Plain text: per element, per mesh, and the chain summary."""
         c = self.chain
         out = [f"chain {c.name} ({c.kind}), input {c.input_turn_deg:g} deg"
@@ -151,7 +151,7 @@ class ChainEvaluation:
                f"{'dphi/deg':>10}{'max/deg':>13}{'min/deg':>13}"]
         for k, e in enumerate(c.elements):
             out.append(f"{e.name:<10}{e.teeth:>5d}{e.pitch_diameter:>8.1f}{self.turns[k]:>11.4f}"
-                       f"{self.zk[k]:>8.2f}{self.fp[k]:>8.3f}{self.F[k]:>8.2f}{self.dphi[k]:>10.4f}"
+                       f"{self.zk[k]:>8.2f}{_given(self.fp[k], 8, 3)}{self.F[k]:>8.2f}{self.dphi[k]:>10.4f}"
                        f"{self.rot_max[k]:>13.2f}{self.rot_min[k]:>13.2f}")
         out.append(f"{'mesh':<20}{'largest':>12}{'smallest':>12}{'theoretical':>12}")
         for p, a, b, t in zip(self.pairs, self.ratio_max, self.ratio_min, self.ratio_nom):
@@ -254,3 +254,8 @@ def roll_ratio_error(ev: ChainEvaluation) -> RollRatioError:
     """Factor on the ratio of roll that the TCA/LTCA applies to the generation of the workpiece."""
     req = ev.i_required
     return RollRatioError(ev.i_nom / req, ev.i_min / req, ev.i_max / req)
+
+
+def _given(v: float, width: int, digits: int) -> str:
+    """A table cell: '-' for a value the case does not give (not 'nan')."""
+    return f"{'-':>{width}}" if not np.isfinite(v) else f"{v:>{width}.{digits}f}"

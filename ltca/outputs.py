@@ -1,0 +1,319 @@
+"""Output folders that a stop cannot corrupt: checked before the work, locked, written atomically, with a status.
+
+- :func:`check_out_dir`: ``--out`` must be (or become) a writable folder, checked before any FE work.
+- :class:`RunDir`: a lock file naming the process (a second run on the same folder exits 2 naming it), a
+  ``run.json`` with status ``running`` / ``complete`` / ``interrupted`` / ``failed`` and the times, stale results of
+  an earlier run removed at a fresh start, and the status set however the run ends (SIGTERM and Ctrl-C:
+  ``interrupted``; an exception, a full disk included: ``failed``; SIGKILL leaves ``running`` with a dead pid,
+  read back as ``interrupted``).
+- :func:`atomic_path`, :func:`write_json_atomic`: every file goes to a temporary name and is renamed into place,
+  so no truncated file ever carries a final name.
+- :class:`PositionStore`: each finished position kept as a pickle (atomic) plus one JSON line, so ``--resume``
+  takes them over and computes only the rest.
+Imports nothing of ours but :mod:`ltca.errors`.
+"""
+from __future__ import annotations
+
+import contextlib
+import datetime as _dt
+import hashlib
+import json
+import math
+import os
+import pickle
+import signal
+import socket
+from pathlib import Path
+from typing import Any, Iterator
+
+from .errors import CaseError
+
+__all__ = ["check_out_dir", "RunDir", "atomic_path", "write_json_atomic", "PositionStore", "finite_json",
+           "read_status", "OUTPUTS", "staging", "signature_of"]
+
+#: results of ``ltca run`` that a fresh start removes (stale results of an earlier run)
+OUTPUTS = ("summary.json", "results.nc", "te.png", "load_sharing.png", "bearing_pattern.png", "root_stress.png",
+           "pinion_loaded.vtu", "gear_loaded.vtu", "positions.jsonl", "te_unloaded.png")
+LOCK = ".ltca.lock"
+STATUS = "run.json"
+
+
+def _now() -> str:
+    return _dt.datetime.now().astimezone().isoformat(timespec="seconds")
+
+
+def finite_json(x: Any) -> Any:
+    """The data with every NaN/inf float replaced by None (strict JSON; NaN is not JSON)."""
+    if isinstance(x, float):
+        return x if math.isfinite(x) else None
+    if isinstance(x, dict):
+        return {str(k): finite_json(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [finite_json(v) for v in x]
+    if hasattr(x, "item") and getattr(x, "ndim", 1) == 0:      # numpy scalars
+        return finite_json(x.item())
+    return x
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | Path) -> Iterator[Path]:
+    """Yield a temporary path beside ``path``; on success it is flushed to disk and renamed to ``path``, on any
+    error it is removed (a full disk never leaves a truncated file under the final name)."""
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
+    try:
+        yield tmp
+        with open(tmp, "rb") as fh:
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
+
+
+def write_bytes_atomic(path: str | Path, data: bytes) -> None:
+    with atomic_path(path) as tmp:
+        with open(tmp, "wb") as fh:
+            fh.write(data)
+
+
+def write_json_atomic(path: str | Path, data: Any) -> None:
+    """Strict JSON (NaN/inf as null), written atomically."""
+    write_bytes_atomic(path, json.dumps(finite_json(data), indent=2, allow_nan=False).encode())
+
+
+def check_out_dir(out: str | Path, option: str = "--out") -> Path:
+    """Make sure ``out`` is a folder we can write, before any work; CaseError (exit 2) otherwise."""
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise CaseError(option, str(out), "a folder for the results, not an existing file")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise CaseError(option, str(out), f"a folder that can be created ({exc.strerror})") from None
+    probe = out / f".write-probe-{os.getpid()}"
+    try:
+        with open(probe, "wb") as fh:
+            fh.write(b"x" * 4096)
+            fh.flush()
+            os.fsync(fh.fileno())
+    except OSError as exc:
+        raise CaseError(option, str(out), f"a writable folder ({exc.strerror})") from None
+    finally:
+        with contextlib.suppress(OSError):
+            probe.unlink()
+    return out
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def read_status(out: str | Path) -> dict | None:
+    """run.json of a folder, with a ``running`` status of a dead process read as ``interrupted``."""
+    p = Path(out) / STATUS
+    try:
+        st = json.loads(p.read_text())
+    except (OSError, ValueError):
+        return None
+    if st.get("status") == "running" and st.get("host") == socket.gethostname() and not _alive(int(st.get("pid", 0))):
+        st["status"] = "interrupted"
+    return st
+
+
+class _Terminated(BaseException):
+    """SIGTERM, turned into an exception so that the status and the lock are written on the way out."""
+
+
+class RunDir:
+    """Context manager around one run writing into ``out``: lock, status, stale results, signal handling.
+
+    ``signature`` identifies the work (case file hash and the settings that change results): ``--resume`` is
+    refused when it differs from the interrupted run's."""
+
+    def __init__(self, out: str | Path, command: str, signature: dict, resume: bool = False):
+        self.out = check_out_dir(out)
+        self.command, self.signature, self.resume = command, signature, resume
+        self.lock = self.out / LOCK
+        self.status: dict = {}
+        self.taken_over = 0
+
+    # -- lock
+    def _acquire(self) -> None:
+        info = {"pid": os.getpid(), "host": socket.gethostname(), "started": _now(), "command": self.command}
+        for _ in range(2):
+            try:
+                fd = os.open(self.lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+            except FileExistsError:
+                try:
+                    other = json.loads(self.lock.read_text())
+                except (OSError, ValueError):
+                    other = {}
+                if other.get("host") == socket.gethostname() and other.get("pid") and not _alive(int(other["pid"])):
+                    with contextlib.suppress(OSError):
+                        self.lock.unlink()       # stale lock of a killed run
+                    continue
+                raise CaseError("--out", str(self.out), f"a folder no other run is writing: locked by {self.lock} "
+                                f"(pid {other.get('pid', '?')} on {other.get('host', '?')} since "
+                                f"{other.get('started', '?')}); wait for it, or delete the lock if that process is "
+                                "gone") from None
+            with os.fdopen(fd, "w") as fh:
+                fh.write(json.dumps(info))
+            return
+        raise CaseError("--out", str(self.out), f"a lock file {self.lock} that can be replaced")
+
+    def _release(self) -> None:
+        with contextlib.suppress(OSError):
+            if json.loads(self.lock.read_text()).get("pid") == os.getpid():
+                self.lock.unlink()
+
+    # -- status
+    def set(self, **kw) -> None:
+        self.status.update(kw, updated=_now())
+        write_json_atomic(self.out / STATUS, self.status)
+
+    def __enter__(self) -> "RunDir":
+        self._acquire()
+        try:
+            prev = read_status(self.out)
+            if self.resume:
+                if prev is None:
+                    raise CaseError("--resume", str(self.out), "a folder with the run.json of an earlier run")
+                if prev.get("signature") != self.signature:
+                    changed = sorted(k for k in set(self.signature) | set(prev.get("signature", {}))
+                                     if self.signature.get(k) != prev.get("signature", {}).get(k))
+                    raise CaseError("--resume", str(self.out), f"the same case and settings as the earlier run "
+                                    f"(changed: {', '.join(changed)}); start afresh without --resume")
+                for name in OUTPUTS:     # the final files are rebuilt; only positions are taken over
+                    if name != "positions.jsonl":
+                        with contextlib.suppress(OSError):
+                            (self.out / name).unlink()
+            else:
+                for name in OUTPUTS:     # stale results of an earlier run
+                    with contextlib.suppress(OSError):
+                        (self.out / name).unlink()
+                PositionStore.clear(self.out)
+            self.status = {"status": "running", "command": self.command, "pid": os.getpid(),
+                           "host": socket.gethostname(), "started": _now(), "signature": self.signature,
+                           "resumed_from": prev.get("status") if (self.resume and prev) else None}
+            self.set()
+        except BaseException:
+            self._release()
+            raise
+        self._old_term = signal.getsignal(signal.SIGTERM)
+        with contextlib.suppress(ValueError):           # only in the main thread
+            signal.signal(signal.SIGTERM, self._on_term)
+        return self
+
+    @staticmethod
+    def _on_term(signum, frame):
+        raise _Terminated()
+
+    def __exit__(self, typ, exc, tb) -> bool:
+        with contextlib.suppress(ValueError):
+            signal.signal(signal.SIGTERM, self._old_term)
+        try:
+            if typ is None:
+                self.set(status="complete", finished=_now())
+            elif issubclass(typ, (KeyboardInterrupt, _Terminated)):
+                self.set(status="interrupted", finished=_now(), error="interrupted (resume with --resume)")
+            else:
+                with contextlib.suppress(OSError):
+                    self.set(status="failed", finished=_now(), error=f"{typ.__name__}: {str(exc)[:300]}")
+        except OSError:
+            pass
+        finally:
+            self._release()
+        if typ is not None and issubclass(typ, _Terminated):
+            raise KeyboardInterrupt from None
+        return False
+
+
+def signature_of(case_path: str | Path, **settings) -> dict:
+    """What identifies a run's results: the case file's bytes and the settings that change them."""
+    digest = hashlib.sha256(Path(case_path).read_bytes()).hexdigest()
+    return {"case_sha256": digest, **{k: v for k, v in settings.items()}}
+
+
+class PositionStore:
+    """Finished positions of ``ltca run``: ``positions/<torque>_<index>.pkl`` (atomic) and ``positions.jsonl``."""
+
+    DIR = "positions"
+
+    def __init__(self, out: str | Path):
+        self.out = Path(out)
+        self.dir = self.out / self.DIR
+        self.dir.mkdir(exist_ok=True)
+        self.log = self.out / "positions.jsonl"
+        self.computed = 0
+        self.taken_over = 0
+        self.dirty = False       # positions taken over whose lines are not yet in the log
+
+    @classmethod
+    def clear(cls, out: Path) -> None:
+        d = Path(out) / cls.DIR
+        if d.is_dir():
+            for p in d.glob("*.pkl"):
+                with contextlib.suppress(OSError):
+                    p.unlink()
+
+    def _path(self, it: int, k: int) -> Path:
+        return self.dir / f"t{it:03d}_p{k:06d}.pkl"
+
+    def load(self, it: int, k: int):
+        p = self._path(it, k)
+        if not p.is_file():
+            return None
+        try:
+            with open(p, "rb") as fh:
+                return pickle.load(fh)
+        except Exception:            # a file from an older program or damaged: compute the position again
+            return None
+
+    def save(self, it: int, k: int, result, line: dict) -> None:
+        write_bytes_atomic(self._path(it, k), pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL))
+        self.append(line)
+
+    def append(self, line: dict) -> None:
+        """One JSON line, written by one write() of a whole line: never torn by another writer (the lock keeps
+        those out), and a full disk makes it fail rather than half-write silently (it is then rewritten on resume)."""
+        data = (json.dumps(finite_json(line), allow_nan=False) + "\n").encode()
+        fd = os.open(self.log, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        try:
+            n = os.write(fd, data)
+            if n != len(data):
+                raise OSError(28, "short write (disk full?)", str(self.log))
+        finally:
+            os.close(fd)
+
+    def rewrite_log(self, lines: list[dict]) -> None:
+        """The log of the positions taken over by --resume, in order (drops a torn last line)."""
+        write_bytes_atomic(self.log, "".join(json.dumps(finite_json(x), allow_nan=False) + "\n"
+                                             for x in lines).encode())
+
+
+@contextlib.contextmanager
+def staging(out: str | Path) -> Iterator[Path]:
+    """A private folder inside ``out`` for files written by other libraries (netCDF, PNG, VTU) under their final
+    names; on success each is flushed to disk and renamed into ``out``; on failure the folder is removed."""
+    import shutil
+    out = Path(out)
+    stage = out / f".staging-{os.getpid()}"
+    shutil.rmtree(stage, ignore_errors=True)
+    stage.mkdir()
+    try:
+        yield stage
+        for p in sorted(stage.iterdir()):
+            with open(p, "rb") as fh:
+                os.fsync(fh.fileno())
+        for p in sorted(stage.iterdir()):
+            os.replace(p, out / p.name)
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
