@@ -155,6 +155,8 @@ def _command(kind: str, path: Path, outdir: Path) -> tuple[list[str], callable]:
             outdir / "summary.json")
     if kind == "bevel":
         return ["bevel-validate", str(path)], lambda o: None
+    if kind == "forming":                      # the planetary case: its reader and the three forming methods
+        return ["forming", str(path), "--out", str(outdir)], _check_text
     return [kind, str(path)], _check_text
 
 
@@ -201,6 +203,8 @@ def _bases() -> list[tuple[str, str, str]]:
             out.append((p.name, "budget", dumps(doc)))
         elif "chain" in doc:
             out.append((p.name, "chain", text))
+        elif "satellite" in doc:
+            out.append((p.name, "forming", text))
         else:
             out.append((p.name, "cyl", text))
     return out
