@@ -33,7 +33,7 @@ import numpy as np
 
 from .cache import load_cached, store_cached
 from .section import rot2
-from .segment_gmsh import background_size, extract_mesh, polyline_distance
+from .segment_gmsh import background_size, fresh_model, mesh_labelled, polyline_distance
 from .session import gmsh_session
 from .spec import SegmentMesh, outline_hash
 
@@ -318,43 +318,22 @@ def build_gear_body(spec: GearBodySpec, cache_dir=None, progress: bool = False) 
     progress : bool
         Let gmsh print to the terminal.
     """
-    import gmsh
-
     t0 = time.perf_counter()
     cached = load_cached(cache_dir, "body", spec.spec_hash)
     if cached is not None:
         return cached
-    with gmsh_session(progress):
-        prev_model = gmsh.model.getCurrent() if gmsh.model.list() else ""
-        gmsh.model.add(f"body_{spec.spec_hash}")
-        old = {k: gmsh.option.getNumber(k) for k in _OPTIONS}
-        try:
-            for k, v in _OPTIONS.items():
-                gmsh.option.setNumber(k, v)
-            gmsh.option.setNumber("Mesh.MeshSizeMax", 1e22)
-            # the twisted sweep's edge curves are splines through this many points: one per 5 mrad of twist keeps
-            # the tip and root edges of a helical tooth on the helix to well under a micrometre
-            twist = abs(spec.lead_twist) * spec.face_width
-            gmsh.option.setNumber("Geometry.ExtrudeSplinePoints", int(np.clip(np.ceil(twist / 0.005), 5, 400)))
-            volumes, dropped, refs, _ = _build(spec)
-            if dropped:
-                gmsh.model.removeEntities([(3, v) for v in dropped])
-            labels = _label(spec, volumes, refs)
-            fine = [t for t, s in labels.items() if s.split("_")[0] in ("flank", "fillet", "tip")]
-            _size_field(spec, fine)
-            for label in sorted(set(labels.values())):
-                gmsh.model.addPhysicalGroup(2, [t for t, s in labels.items() if s == label], name=label)
-            gmsh.model.addPhysicalGroup(3, volumes, name="body")
-            gmsh.model.mesh.generate(3)
-            if spec.order == 2:
-                gmsh.model.mesh.setOrder(2)
-            nodes, tets, facets = extract_mesh(labels, spec.order)
-        finally:
-            gmsh.model.remove()
-            if prev_model and prev_model in gmsh.model.list():
-                gmsh.model.setCurrent(prev_model)
-            for k, v in old.items():
-                gmsh.option.setNumber(k, v)
+    twist = abs(spec.lead_twist) * spec.face_width
+    # the twisted sweep's edge curves are splines through this many points: one per 5 mrad of twist keeps the
+    # tip and root edges of a helical tooth on the helix to well under a micrometre
+    options = _OPTIONS | {"Mesh.MeshSizeMax": 1e22,
+                          "Geometry.ExtrudeSplinePoints": int(np.clip(np.ceil(twist / 0.005), 5, 400))}
+    with gmsh_session(progress), fresh_model(f"body_{spec.spec_hash}", options):
+        import gmsh
+        volumes, dropped, refs, _ = _build(spec)
+        if dropped:
+            gmsh.model.removeEntities([(3, v) for v in dropped])
+        labels = _label(spec, volumes, refs)
+        nodes, tets, facets = mesh_labelled(labels, volumes, spec.order, lambda fine: _size_field(spec, fine))
     mesh = SegmentMesh(nodes, tets, facets, spec.spec_hash, time.perf_counter() - t0)
     store_cached(cache_dir, "body", mesh)
     return mesh

@@ -7,12 +7,15 @@ mesh, and any deck written from it, is bit-identical for one spec.
 """
 from __future__ import annotations
 
+import contextlib
+from typing import Callable, Iterator
+
 import numpy as np
 
 from .section import SectionPiece, rot2, section_pieces
 from .spec import SegmentSpec
 
-__all__ = ["mesh_with_gmsh", "extract_mesh", "polyline_distance", "background_size"]
+__all__ = ["mesh_with_gmsh", "extract_mesh", "polyline_distance", "background_size", "fresh_model", "mesh_labelled"]
 
 _GMSH_TO_MESHIO_TET10 = np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8])
 _FLIP_TRI6 = np.array([0, 2, 1, 5, 4, 3])
@@ -211,37 +214,52 @@ def mesh_with_gmsh(spec: SegmentSpec) -> tuple[np.ndarray, np.ndarray, dict[str,
     nodes, tets, facets
         As the fields of :class:`fem.solids.spec.SegmentMesh`.
     """
-    import gmsh
-
-    old = {k: gmsh.option.getNumber(k) for k in _OPTIONS}
-    prev_model = gmsh.model.getCurrent()
-    name = f"segment_{spec.spec_hash}"
-    gmsh.model.add(name)
-    try:
-        for k, v in _OPTIONS.items():
-            gmsh.option.setNumber(k, v)
+    with fresh_model(f"segment_{spec.spec_hash}", _OPTIONS):
+        import gmsh
         gmsh.option.setNumber("Mesh.MeshSizeMax", spec.h_body)
         pieces = section_pieces(spec)
         vol = _build_solid(spec, pieces)
         gmsh.model.occ.synchronize()
         _remove_strays(vol)
         labels = _label_surfaces(spec, pieces, vol)
-        fine = [t for t, s in labels.items() if s.split("_")[0] in ("flank", "fillet", "tip")]
-        _set_size_field(spec, fine)
-        for label in sorted(set(labels.values())):
-            gmsh.model.addPhysicalGroup(2, [t for t, s in labels.items() if s == label], name=label)
-        gmsh.model.addPhysicalGroup(3, [vol], name="body")
-        gmsh.model.mesh.generate(3)
-        if spec.order == 2:
-            gmsh.model.mesh.setOrder(2)
-        nodes, tets, facets = extract_mesh(labels, spec.order)
+        return mesh_labelled(labels, [vol], spec.order, lambda fine: _set_size_field(spec, fine))
+
+
+@contextlib.contextmanager
+def fresh_model(name: str, options: dict[str, float]) -> Iterator[None]:
+    """A new gmsh model with ``options`` set, for the duration of a ``with`` block; on exit the model is removed
+    and the previous model and option values are restored (gmsh must be initialised)."""
+    import gmsh
+
+    old = {k: gmsh.option.getNumber(k) for k in options}
+    prev_model = gmsh.model.getCurrent() if gmsh.model.list() else ""
+    gmsh.model.add(name)
+    try:
+        for k, v in options.items():
+            gmsh.option.setNumber(k, v)
+        yield
     finally:
         gmsh.model.remove()
         if prev_model and prev_model in gmsh.model.list():
             gmsh.model.setCurrent(prev_model)
         for k, v in old.items():
             gmsh.option.setNumber(k, v)
-    return nodes, tets, facets
+
+
+def mesh_labelled(labels: dict[int, str], volumes: list[int], order: int,
+                  set_sizes: Callable[[list[int]], None]) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    """Size (``set_sizes`` gets the flank, fillet and tip surfaces), group, mesh and read the current model."""
+    import gmsh
+
+    fine = [t for t, s in labels.items() if s.split("_")[0] in ("flank", "fillet", "tip")]
+    set_sizes(fine)
+    for label in sorted(set(labels.values())):
+        gmsh.model.addPhysicalGroup(2, [t for t, s in labels.items() if s == label], name=label)
+    gmsh.model.addPhysicalGroup(3, volumes, name="body")
+    gmsh.model.mesh.generate(3)
+    if order == 2:
+        gmsh.model.mesh.setOrder(2)
+    return extract_mesh(labels, order)
 
 
 def extract_mesh(labels: dict[int, str], order: int) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
