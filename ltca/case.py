@@ -15,7 +15,7 @@ from typing import Any
 from .errors import CaseError
 from .validation import Num, ToothMap
 
-__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "case_keys",
+__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "case_keys", "check_torques",
            "FIDELITIES"]
 
 DEG = math.pi / 180.0
@@ -87,6 +87,7 @@ class CylindricalCase:
     fidelity: str
     fidelity_params: dict = field(default_factory=dict)
     source: str | None = None
+    positions_auto: bool = False  # analysis.positions not given: ltca run picks enough for the cycle's transitions
 
 
 # --------------------------------------------------------------------------------------------- #
@@ -150,8 +151,9 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "poisson_ratio": (float, False, 0.3, lambda v: 0.0 <= v < 0.5, "a number in [0, 0.5)"),
     },
     "load": {
-        "torque_nm": (float, False, None, lambda v: 1e-3 <= v <= 1e6, "a number in [1e-3, 1e6] N m"),
-        "torques_nm": (list, False, None, lambda v: 1 <= len(v) <= 100, "a list of 1 to 100 numbers in [1e-3, 1e6] N m"),
+        "torque_nm": (object, True, None, None,
+                      "a number in [1e-3, 1e6] N m, or a list of 1 to 100 distinct such numbers (one analysis "
+                      "per torque)"),
         "driver": (str, False, "pinion", lambda v: v == "pinion", "'pinion' (the pinion drives)"),
     },
     "analysis": {
@@ -248,23 +250,14 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
     pinion, gear = _member(data, "pinion", file), _member(data, "gear", file)
     asm = _section(data, "assembly", "assembly", file)
     mat = _section(data, "material", "material", file)
+    if isinstance(data.get("load"), dict) and "torques_nm" in data["load"]:
+        raise CaseError("load.torques_nm", data["load"]["torques_nm"], "renamed: write torque_nm = a number or a "
+                        "list of numbers (N m), e.g. torque_nm = [100.0, 200.0]", file)
     load = _section(data, "load", "load", file, required=True)
     ana = _section(data, "analysis", "analysis", file)
     if pinion.internal:
         raise CaseError("pinion.internal", True, "the pinion must be external (false)", file)
-    if load["torque_nm"] is not None and load["torques_nm"] is not None:
-        raise CaseError("load.torques_nm", load["torques_nm"], "give torque_nm or torques_nm, not both", file)
-    if load["torque_nm"] is None and load["torques_nm"] is None:
-        raise CaseError("load.torque_nm", None, "give torque_nm (N m) or torques_nm (list of N m)", file)
-    if load["torques_nm"] is not None:
-        torques = load["torques_nm"]
-        for i, t in enumerate(torques):
-            if isinstance(t, bool) or not isinstance(t, (int, float)) or not 1e-3 <= t <= 1e6:
-                raise CaseError(f"load.torques_nm[{i}]", t, "a number in [1e-3, 1e6] N m", file)
-        if not torques:
-            raise CaseError("load.torques_nm", torques, "a non-empty list of torques in N m", file)
-    else:
-        torques = [load["torque_nm"]]
+    torques = check_torques(load["torque_nm"], "load.torque_nm", file)
     m = gp["module_mm"]
     if gear.internal and gear.teeth - pinion.teeth < 8:
         raise CaseError("gear.teeth", gear.teeth,
@@ -280,7 +273,23 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
         young=mat["youngs_modulus_mpa"], poisson=mat["poisson_ratio"],
         torques=tuple(float(t) * 1e3 for t in torques), positions=ana["positions"], cycles=ana["cycles"],
         fidelity=ana["fidelity"],
-        fidelity_params=dict(FIDELITIES[ana["fidelity"]]), source=c["source"] or None)
+        fidelity_params=dict(FIDELITIES[ana["fidelity"]]), source=c["source"] or None,
+        positions_auto="positions" not in (data.get("analysis") or {}))
+
+
+#: one torque (N m) as the case file and ``--torque`` give it
+TORQUE = Num(1e-3, 1e6, "N m")
+
+
+def check_torques(v: Any, path: str = "load.torque_nm", file: str | None = None) -> tuple[float, ...]:
+    """``torque_nm``: a number or a list of 1 to 100 distinct numbers in [1e-3, 1e6] N m -> tuple in N m."""
+    from .validation import List
+    if isinstance(v, list):
+        out = List(TORQUE, 1, 100).check(v, path, file)
+        if len(set(out)) != len(out):
+            raise CaseError(path, v, "distinct torques (each torque is one analysis)", file)
+        return tuple(out)
+    return (TORQUE.check(v, path, file),)
 
 
 def case_keys() -> dict[str, str]:

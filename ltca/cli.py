@@ -29,11 +29,11 @@ def _cmd_run(a: argparse.Namespace) -> int:
     if _planetary(a.case):
         from .planetary.run import run_planetary
         run_planetary(a.case, out=a.out, fidelity=a.fidelity, n_positions=a.positions, progress=not a.quiet,
-                      cache=a.cache)
+                      cache=a.cache, torques_nm=a.torque)
         return 0
     from .cylindrical.run import run_case
     run_case(a.case, out=a.out, fidelity=a.fidelity, positions=a.positions, progress=not a.quiet,
-             cache=a.cache, resume=a.resume, max_output_gb=a.max_output_gb)
+             cache=a.cache, resume=a.resume, max_output_gb=a.max_output_gb, torques=a.torque)
     return 0
 
 
@@ -132,6 +132,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--out", default="out", help="output directory (default: out)")
     r.add_argument("--fidelity", choices=["coarse", "default", "fine"], help="override the case's fidelity")
     r.add_argument("--positions", type=_positions, help="mesh positions per cycle (override, at most 2000)")
+    r.add_argument("--torque", type=float, nargs="+", metavar="NM",
+                   help="pinion torque(s) in N m, one analysis each; replaces the case's [load] torque_nm "
+                        "(e.g. --torque 100 200 300)")
     r.add_argument("--resume", action="store_true",
                    help="take over the positions an interrupted run on the same --out finished; compute the rest")
     r.add_argument("--max-output-gb", type=float, default=2.0, metavar="GB",
