@@ -171,7 +171,7 @@ def test_positions_resolve_the_transition_zones():
     zones = transition_zones(m)
     assert sum(zones.values()) == pytest.approx(1.0) and min(zones.values()) > 0.4
     assert default_positions(m) == 30 and sampling_warnings(m, 30) == [] and sampling_warnings(m, 10) == []
-    assert len(sampling_warnings(m, 6)) == 1 and "at least 10" in sampling_warnings(m, 6)[0]
+    assert len(sampling_warnings(m, 8)) == 1 and "at least 10" in sampling_warnings(m, 8)[0]
     # a short tip relief: a narrow zone raises the default and warns at 30
     d = read_toml(CASES / "fzg_c14.toml")
     d["pinion"]["modifications"] = {"tip_relief_um": 10.0, "tip_relief_start_diameter_mm": 82.0}
