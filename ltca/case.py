@@ -15,7 +15,7 @@ from typing import Any
 from .errors import CaseError
 from .validation import Num, ToothMap
 
-__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "case_keys",
+__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "case_keys", "check_torques", "key_reference",
            "FIDELITIES"]
 
 DEG = math.pi / 180.0
@@ -87,6 +87,7 @@ class CylindricalCase:
     fidelity: str
     fidelity_params: dict = field(default_factory=dict)
     source: str | None = None
+    positions_auto: bool = False  # analysis.positions not given: ltca run picks enough for the cycle's transitions
 
 
 # --------------------------------------------------------------------------------------------- #
@@ -150,8 +151,9 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "poisson_ratio": (float, False, 0.3, lambda v: 0.0 <= v < 0.5, "a number in [0, 0.5)"),
     },
     "load": {
-        "torque_nm": (float, False, None, lambda v: 1e-3 <= v <= 1e6, "a number in [1e-3, 1e6] N m"),
-        "torques_nm": (list, False, None, lambda v: 1 <= len(v) <= 100, "a list of 1 to 100 numbers in [1e-3, 1e6] N m"),
+        "torque_nm": (object, True, None, None,
+                      "a number in [1e-3, 1e6] N m, or a list of 1 to 100 distinct such numbers (one analysis "
+                      "per torque)"),
         "driver": (str, False, "pinion", lambda v: v == "pinion", "'pinion' (the pinion drives)"),
     },
     "analysis": {
@@ -160,6 +162,60 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
                    "pinion teeth for a full pinion revolution)"),
         "fidelity": (str, False, "default", lambda v: v in FIDELITIES, f"one of {sorted(FIDELITIES)}"),
     },
+}
+#: every key's unit and meaning, beside the schema: ``ltca keys`` and docs/case_keys.md are generated from both
+#: (tests/test_case_keys.py fails when a key of _SCHEMA has no entry here)
+_DOC: dict[str, dict[str, tuple[str, str]]] = {
+    "case": {"name": ("-", "name of the case, in plot titles and summary.json"),
+             "description": ("-", "free text describing the case"),
+             "source": ("-", "where the data come from (paper, drawing, file)")},
+    "gear_pair": {"module_mm": ("mm", "normal module m_n"),
+                  "pressure_angle_deg": ("deg", "normal pressure angle alpha_n of the basic rack"),
+                  "helix_angle_deg": ("deg", "helix angle beta at the reference circle (0: spur; the sign is the hand)")},
+    "cutter": {"addendum": ("x module", "addendum of the generating rack h_aP0 (cuts the dedendum of the gear)"),
+               "dedendum": ("x module", "dedendum of the generating rack (cuts the tip; above the tip circle "
+                            "when the tip diameter is given)"),
+               "tip_radius": ("x module", "tip radius rho_aP0 of the rack (forms the root fillet)"),
+               "shaper_teeth": ("-", "teeth of the pinion-type shaper cutter that cuts an internal gear"),
+               "shaper_profile_shift": ("-", "profile shift coefficient of that shaper cutter")},
+    "member": {"teeth": ("-", "number of teeth z"),
+               "profile_shift": ("-", "profile shift coefficient x"),
+               "face_width_mm": ("mm", "face width b"),
+               "tip_diameter_mm": ("mm", "tip diameter d_a (default: from the module, shift and rack)"),
+               "bore_diameter_mm": ("mm", "bore (seat on the shaft, held rigid); a ring gear: its outer diameter "
+                                    "held in the housing (default: a proportion of the root diameter)"),
+               "internal": ("-", "true for an internal (ring) gear; the pinion is always external"),
+               "thickness_allowance_um": ("um", "normal tooth thinning for backlash, total"),
+               "rim_thickness_mm": ("mm", "webbed body: radial rim thickness below the root circle"),
+               "web_thickness_mm": ("mm", "webbed body: axial width of the web between rim and hub"),
+               "web_offset_mm": ("mm", "webbed body: axial offset of the web's mid-plane from mid-face"),
+               "hub_diameter_mm": ("mm", "webbed body: diameter where the web meets the hub")},
+    "modifications": {
+        "tip_relief_um": ("um", "tip relief C_a, material removed normal to the flank at the tip"),
+        "tip_relief_start_diameter_mm": ("mm", "diameter where the tip relief starts (default: the end of the "
+                                         "single-pair zone)"),
+        "tip_relief_exponent": ("-", "shape of the tip relief: 1 linear, 2 parabolic"),
+        "profile_crowning_um": ("um", "profile crowning C_alpha, parabola over the active profile"),
+        "lead_crowning_um": ("um", "lead crowning C_beta, parabola over the face width"),
+        "lead_slope_um": ("um", "lead slope f_Hbeta, linear over the face (+ at z = +b/2)"),
+        "pitch_errors_um": ("um", "tooth position errors per tooth index (+: drive flank moved back)"),
+        "profile_slope_um": ("um", "profile slope deviation f_Halpha (+: tip relieved)"),
+        "roll_ratio_error": ("-", "generating-chain ratio error e, turned into a profile slope"),
+        "profile_form_um": ("um", "parabolic profile form deviation f_falpha (+ convex, - hollow)"),
+        "lead_form_um": ("um", "parabolic lead form deviation f_fbeta (+ convex, - hollow)")},
+    "assembly": {"centre_distance_mm": ("mm", "centre distance a (default: the working centre distance for zero "
+                                        "backlash)"),
+                 "lead_misalignment_um": ("um", "misalignment over the face width in the plane of action (f_ma)"),
+                 "lead_deviation_um": ("um", "misalignment over the face width normal to the plane of action")},
+    "material": {"youngs_modulus_mpa": ("MPa", "Young's modulus of both members"),
+                 "poisson_ratio": ("-", "Poisson's ratio of both members")},
+    "load": {"torque_nm": ("N m", "pinion torque, or a list of torques analysed one after the other; "
+                           "`ltca run --torque` replaces it"),
+             "driver": ("-", "the driving member (the pinion)")},
+    "analysis": {"positions": ("-", "mesh positions per mesh cycle (default: 30, or more when the transition "
+                               "zones of the cycle need them: 4 positions in each)"),
+                 "cycles": ("-", "mesh cycles analysed (the pinion's teeth: a full pinion revolution)"),
+                 "fidelity": ("-", "element sizes and contact grid: coarse (fast), default, fine")},
 }
 _TOP = {"case", "gear_pair", "cutter", "pinion", "gear", "assembly", "material", "load", "analysis"}
 
@@ -248,23 +304,14 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
     pinion, gear = _member(data, "pinion", file), _member(data, "gear", file)
     asm = _section(data, "assembly", "assembly", file)
     mat = _section(data, "material", "material", file)
+    if isinstance(data.get("load"), dict) and "torques_nm" in data["load"]:
+        raise CaseError("load.torques_nm", data["load"]["torques_nm"], "renamed: write torque_nm = a number or a "
+                        "list of numbers (N m), e.g. torque_nm = [100.0, 200.0]", file)
     load = _section(data, "load", "load", file, required=True)
     ana = _section(data, "analysis", "analysis", file)
     if pinion.internal:
         raise CaseError("pinion.internal", True, "the pinion must be external (false)", file)
-    if load["torque_nm"] is not None and load["torques_nm"] is not None:
-        raise CaseError("load.torques_nm", load["torques_nm"], "give torque_nm or torques_nm, not both", file)
-    if load["torque_nm"] is None and load["torques_nm"] is None:
-        raise CaseError("load.torque_nm", None, "give torque_nm (N m) or torques_nm (list of N m)", file)
-    if load["torques_nm"] is not None:
-        torques = load["torques_nm"]
-        for i, t in enumerate(torques):
-            if isinstance(t, bool) or not isinstance(t, (int, float)) or not 1e-3 <= t <= 1e6:
-                raise CaseError(f"load.torques_nm[{i}]", t, "a number in [1e-3, 1e6] N m", file)
-        if not torques:
-            raise CaseError("load.torques_nm", torques, "a non-empty list of torques in N m", file)
-    else:
-        torques = [load["torque_nm"]]
+    torques = check_torques(load["torque_nm"], "load.torque_nm", file)
     m = gp["module_mm"]
     if gear.internal and gear.teeth - pinion.teeth < 8:
         raise CaseError("gear.teeth", gear.teeth,
@@ -280,7 +327,23 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
         young=mat["youngs_modulus_mpa"], poisson=mat["poisson_ratio"],
         torques=tuple(float(t) * 1e3 for t in torques), positions=ana["positions"], cycles=ana["cycles"],
         fidelity=ana["fidelity"],
-        fidelity_params=dict(FIDELITIES[ana["fidelity"]]), source=c["source"] or None)
+        fidelity_params=dict(FIDELITIES[ana["fidelity"]]), source=c["source"] or None,
+        positions_auto="positions" not in (data.get("analysis") or {}))
+
+
+#: one torque (N m) as the case file and ``--torque`` give it
+TORQUE = Num(1e-3, 1e6, "N m")
+
+
+def check_torques(v: Any, path: str = "load.torque_nm", file: str | None = None) -> tuple[float, ...]:
+    """``torque_nm``: a number or a list of 1 to 100 distinct numbers in [1e-3, 1e6] N m -> tuple in N m."""
+    from .validation import List
+    if isinstance(v, list):
+        out = List(TORQUE, 1, 100).check(v, path, file)
+        if len(set(out)) != len(out):
+            raise CaseError(path, v, "distinct torques (each torque is one analysis)", file)
+        return tuple(out)
+    return (TORQUE.check(v, path, file),)
 
 
 def case_keys() -> dict[str, str]:
@@ -294,6 +357,28 @@ def case_keys() -> dict[str, str]:
             for key, spec in _SCHEMA["modifications"].items():
                 out[f"{sec}.modifications.{key}"] = spec[4]
     return out
+
+
+def key_reference() -> list[dict]:
+    """Every case key with its table, type, unit, default, allowed range and meaning, from the schema (the source of
+    ``ltca keys`` and docs/case_keys.md)."""
+    rows = []
+    order = ["case", "gear_pair", "cutter", "pinion", "pinion.modifications", "gear", "gear.modifications",
+             "assembly", "material", "load", "analysis"]
+    for table in order:
+        schema = "modifications" if table.endswith(".modifications") else \
+            ("member" if table in ("pinion", "gear") else table)
+        for key, (typ, req, default, _check, allowed) in _SCHEMA[schema].items():
+            unit, meaning = _DOC[schema][key]
+            tname = {float: "number", int: "integer", str: "string", bool: "boolean", dict: "table",
+                     object: "number or list"}.get(typ, typ.__name__)
+            if default is None:
+                dflt = "required" if req else "derived"
+            else:
+                dflt = repr(default) if not isinstance(default, bool) else str(default).lower()
+            rows.append(dict(table=table, key=key, type=tname, unit=unit, default=dflt, allowed=allowed,
+                             meaning=meaning))
+    return rows
 
 
 def read_toml(path: str | Path) -> dict:

@@ -29,11 +29,11 @@ def _cmd_run(a: argparse.Namespace) -> int:
     if _planetary(a.case):
         from .planetary.run import run_planetary
         run_planetary(a.case, out=a.out, fidelity=a.fidelity, n_positions=a.positions, progress=not a.quiet,
-                      cache=a.cache)
+                      cache=a.cache, torques_nm=a.torque)
         return 0
     from .cylindrical.run import run_case
     run_case(a.case, out=a.out, fidelity=a.fidelity, positions=a.positions, progress=not a.quiet,
-             cache=a.cache, resume=a.resume, max_output_gb=a.max_output_gb)
+             cache=a.cache, resume=a.resume, max_output_gb=a.max_output_gb, torques=a.torque)
     return 0
 
 
@@ -102,6 +102,12 @@ def _cmd_chain(a: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_keys(a: argparse.Namespace) -> int:
+    from .keys import keys_markdown, keys_text
+    print(keys_markdown(a.table) if a.markdown else keys_text(a.table), end="")
+    return 0
+
+
 def _positive_int(text: str) -> int:
     try:
         v = int(text)
@@ -132,6 +138,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--out", default="out", help="output directory (default: out)")
     r.add_argument("--fidelity", choices=["coarse", "default", "fine"], help="override the case's fidelity")
     r.add_argument("--positions", type=_positions, help="mesh positions per cycle (override, at most 2000)")
+    r.add_argument("--torque", type=float, nargs="+", metavar="NM",
+                   help="pinion torque(s) in N m, one analysis each; replaces the case's [load] torque_nm "
+                        "(e.g. --torque 100 200 300)")
     r.add_argument("--resume", action="store_true",
                    help="take over the positions an interrupted run on the same --out finished; compute the rest")
     r.add_argument("--max-output-gb", type=float, default=2.0, metavar="GB",
@@ -140,11 +149,20 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--quiet", action="store_true", help="no progress output")
     r.set_defaults(func=_cmd_run)
 
+    k = sub.add_parser("keys", help="reference of every case key: unit, default, allowed range, meaning",
+                       description="Prints every key of a cylindrical case file (generated from the schema in "
+                                   "ltca/case.py): type, unit, default, allowed range and meaning. "
+                                   "docs/case_keys.md is `ltca keys --markdown`.")
+    k.add_argument("table", nargs="?", default=None,
+                   help="only this table, e.g. load, pinion, pinion.modifications (default: every table)")
+    k.add_argument("--markdown", action="store_true", help="print Markdown tables (docs/case_keys.md)")
+    k.set_defaults(func=_cmd_keys)
+
     t = sub.add_parser("tca", help="unloaded tooth contact analysis (separation, path, TE, contact ratio)",
                        description="Unloaded TCA: separation field, contact path, unloaded TE, contact ratio. "
                                    "A case with a [bevel] table: spiral bevel pinion synthesis from eta2 and m21 "
                                    "and the TCA of both flanks, with a Gleason-style settings summary.")
-    t.add_argument("case")
+    t.add_argument("case", help="case file (.toml): cylindrical, [bevel] or [satellite]")
     t.add_argument("--out", default=None, help="output directory for summary.json and plots")
     t.add_argument("--positions", type=_positions, help="mesh positions per cycle (override, at most 2000)")
     t.set_defaults(func=_cmd_tca)
@@ -162,12 +180,13 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--no-plots", action="store_true", help="summary CSV and store only")
     s.add_argument("--quiet", action="store_true", help="no progress output")
     s.set_defaults(func=_cmd_study)
-    f = sub.add_parser("forming", help="satellite forming methods compared (seed 004): table, CSV, overlay plot",
+    f = sub.add_parser("forming", help="satellite forming methods compared (eccentric planetary): table, CSV, "
+                                       "overlay plot",
                        description="Cuts the satellite of a [satellite] case by the standard hob in three passes, "
                                    "the disk cutter and the special hob; prints thickness against Eq. 3, tip land, "
                                    "dedendum, fillet and the deviation from the special hob; writes forming.csv and "
                                    "forming.png into --out.")
-    f.add_argument("case")
+    f.add_argument("case", help="case file (.toml) with a [satellite] table")
     f.add_argument("--out", default=None, help="output directory for forming.csv and forming.png")
     f.set_defaults(func=_cmd_forming)
 
@@ -175,18 +194,18 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Runs a ladder of fidelities (flank element size, contact grid, near-field "
                                    "correction on/off) and prints wall time against the error in loaded TE, "
                                    "peak pressure and root stress relative to the finest.")
-    c.add_argument("case")
-    c.add_argument("--out", default="out/convergence")
-    c.add_argument("--positions", type=_positions, default=8)
-    c.add_argument("--quiet", action="store_true")
+    c.add_argument("case", help="case file (.toml)")
+    c.add_argument("--out", default="out/convergence", help="output directory (default: out/convergence)")
+    c.add_argument("--positions", type=_positions, default=8, help="mesh positions per cycle (default 8)")
+    c.add_argument("--quiet", action="store_true", help="no progress output")
     c.set_defaults(func=_cmd_convergence)
 
     v = sub.add_parser("validate", help="run the validation cases: measured vs reference, error, time",
                        description="Runs the validation cases and prints measured vs reference, error and time.")
-    v.add_argument("--out", default="out/validate")
+    v.add_argument("--out", default="out/validate", help="output directory (default: out/validate)")
     v.add_argument("--reference", choices=["analytic", "calculix"], default="analytic",
                    help="analytic references and tables (default) or the CalculiX cross-check (slow: "
-                        "10-30 min per position on 2 cores)")
+                        "5-15 min per position on 2 cores, plus 30-45 min per pressure ladder)")
     v.add_argument("--case", default="cases/fzg_c14.toml", help="case for --reference calculix")
     v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
                    help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9)")
@@ -197,33 +216,34 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--band", type=float, metavar="UM",
                    help="CalculiX contact-band element size at rung 0, um (default 3/4 of the Hertz half-width)")
     v.add_argument("--coarse-body", action="store_true",
-                   help="CalculiX elements of our coarse fidelity away from the contact band (0.45 m, 1.6 m)")
+                   help="CalculiX elements of our coarse fidelity away from the contact band (0.45 x module on "
+                        "the flank, 1.6 x module in the body)")
     v.add_argument("--pressure-ladder", choices=["auto", "all", "none"], default="auto",
                    help="where CalculiX refines a mid-face window of the narrowest contact three times for a "
                         "converged peak pressure: auto (positions whose narrowest contact has < 3 band elements per "
                         "half-width, other than the band ladder's first position), all or none")
-    v.add_argument("--quiet", action="store_true")
+    v.add_argument("--quiet", action="store_true", help="no progress output")
     v.set_defaults(func=_cmd_validate)
 
     be = sub.add_parser("bench", help="cold wall time of an analysis (median of runs) beside its Hertz error",
                         description="Runs the case cold several times and prints the median time per stage and "
                                     "the pitch-point error against Hertz.")
-    be.add_argument("case")
-    be.add_argument("--repeat", type=_positive_int, default=3)
-    be.add_argument("--positions", type=_positions)
-    be.add_argument("--fidelity", choices=["coarse", "default", "fine"])
+    be.add_argument("case", help="case file (.toml)")
+    be.add_argument("--repeat", type=_positive_int, default=3, help="cold runs; the median is reported (default 3)")
+    be.add_argument("--positions", type=_positions, help="mesh positions per cycle (default: the case's)")
+    be.add_argument("--fidelity", choices=["coarse", "default", "fine"], help="override the case's fidelity")
     be.set_defaults(func=_cmd_bench)
 
-    b = sub.add_parser("budget", help="drive-train stiffness and backlash budget (seed 003)",
+    b = sub.add_parser("budget", help="drive-train stiffness and backlash budget (Wang et al.)",
                        description="Torsional deflection of a drive train of members in series, per torque.")
-    b.add_argument("case")
-    b.add_argument("--out", default=None)
+    b.add_argument("case", help="budget case file (.toml) with [budget] and [[member]] tables")
+    b.add_argument("--out", default=None, help="output directory for the CSV and plots (default: print only)")
     b.set_defaults(func=_cmd_budget)
 
-    ch = sub.add_parser("chain", help="machine kinematic-chain ratio errors (seed 002)",
+    ch = sub.add_parser("chain", help="machine kinematic-chain ratio errors (indexing and generating chains)",
                         description="Ratio errors of indexing and generating chains and the tooth errors they make.")
-    ch.add_argument("case")
-    ch.add_argument("--out", default=None)
+    ch.add_argument("case", help="chain case file (.toml) with [[chain]] and [workpiece] tables")
+    ch.add_argument("--out", default=None, help="output directory for the CSV tables (default: print only)")
     ch.set_defaults(func=_cmd_chain)
     return p
 

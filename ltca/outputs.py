@@ -33,7 +33,8 @@ __all__ = ["check_out_dir", "RunDir", "atomic_path", "write_json_atomic", "Posit
 
 #: results of ``ltca run`` that a fresh start removes (stale results of an earlier run)
 OUTPUTS = ("summary.json", "results.nc", "te.png", "load_sharing.png", "bearing_pattern.png", "root_stress.png",
-           "pinion_loaded.vtu", "gear_loaded.vtu", "positions.jsonl", "te_unloaded.png")
+           "pinion_loaded.vtu", "gear_loaded.vtu", "positions.jsonl", "te_unloaded.png", "te_ptp.png",
+           "te_harmonics.png")
 LOCK = ".ltca.lock"
 STATUS = "run.json"
 

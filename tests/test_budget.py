@@ -110,7 +110,7 @@ def test_run_budget_writes_outputs(tmp_path, capsys):
 ])
 def test_bad_member_names_field(tmp_path, text, field):
     p = tmp_path / "bad.toml"
-    p.write_text(f'[budget]\ntorques_Nm = [1.0]\n[[member]]\nname = "x"\n{text}\n')
+    p.write_text(f'[budget]\ntorque_nm = [1.0]\n[[member]]\nname = "x"\n{text}\n')
     with pytest.raises(CaseError) as exc:
         load_budget_case(str(p))
     assert exc.value.field == field
@@ -118,9 +118,9 @@ def test_bad_member_names_field(tmp_path, text, field):
 
 def test_bad_torques(tmp_path):
     p = tmp_path / "bad.toml"
-    p.write_text('[budget]\ntorques_Nm = [1.0, -2.0]\n[[member]]\nname = "x"\n'
+    p.write_text('[budget]\ntorque_nm = [1.0, -2.0]\n[[member]]\nname = "x"\n'
                  'kind = "torsion"\nstiffness_Nm_per_rad = 1.0\n')
-    with pytest.raises(CaseError, match="budget.torques_Nm"):
+    with pytest.raises(CaseError, match="budget.torque_nm"):
         load_budget_case(str(p))
 
 

@@ -25,7 +25,7 @@ FAST = {"analysis.fidelity": "coarse", "analysis.positions": 4}
 
 
 def study_dict(grid: dict, torques=(100.0, 200.0), **extra) -> dict:
-    return {"study": {"name": "test", "case": str(ROOT / "cases" / "fzg_c14.toml"), "torques_nm": list(torques)},
+    return {"study": {"name": "test", "case": str(ROOT / "cases" / "fzg_c14.toml"), "torque_nm": list(torques)},
             "set": dict(FAST), "grid": grid, **extra}
 
 

@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
-__all__ = ["plot_all", "write_vtu"]
+__all__ = ["plot_all", "plot_data", "write_vtu"]
 
 
 def _save(fig, path: Path) -> None:
@@ -19,50 +19,143 @@ def _save(fig, path: Path) -> None:
     plt.close(fig)
 
 
+def _by_torque(ds: xr.Dataset) -> xr.Dataset:
+    return ds if "torque" in ds.dims else ds.expand_dims(torque=[float(ds.attrs.get("torque_nm", np.nan))])
+
+
+def plot_data(ds: xr.Dataset) -> dict:
+    """What each PNG shows, per torque (the run dataset of :func:`ltca.cylindrical.sweep.run_dataset`; a single
+    torque's position dataset is taken as one torque): the data :func:`plot_all` draws, so that tests check it.
+
+    Keys: ``te`` {torque: (roll deg, loaded TE arcsec, loaded TE um)} and ``te_unloaded`` (roll, arcsec, um);
+    ``te_ptp`` (torques, ptp arcsec, ptp um); ``load_sharing`` {torque: {pinion tooth: (roll, share)}};
+    ``bearing_pattern`` {torque: (flank roll deg, face mm, pressure (profile, face) MPa)} with ``pressure_range``
+    (the shared colour scale); ``root_stress`` {torque: (roll, pinion MPa, gear MPa)}; ``harmonics``
+    {torque: (mesh orders, amplitude arcsec)}."""
+    ds = _by_torque(ds)
+    torques = [float(t) for t in ds.torque.values]
+    roll = ds["position"].values
+    out: dict = {"torques": torques, "te": {}, "load_sharing": {}, "bearing_pattern": {}, "root_stress": {},
+                 "harmonics": {}}
+    for t in torques:
+        d = ds.sel(torque=t)
+        um = d.te_loaded_um.values if "te_loaded_um" in d else np.full(roll.shape, np.nan)
+        out["te"][t] = (roll, d.te_loaded.values, um)
+        total = d.pair_load.sum("pinion_tooth").values
+        shares = {}
+        for k in d.pinion_tooth.values:
+            share = np.divide(d.pair_load.sel(pinion_tooth=k).values, total, out=np.zeros_like(total),
+                              where=total > 0)
+            if share.max() > 0:
+                shares[int(k)] = (roll, share)
+        out["load_sharing"][t] = shares
+        pattern = d.pressure.max(("position", "pinion_tooth")).values
+        out["bearing_pattern"][t] = (ds.flank_roll.values, ds.face.values, pattern)
+        out["root_stress"][t] = (roll, d.root_stress_pinion.max("pinion_tooth").values,
+                                 d.root_stress_gear.max("gear_tooth").values)
+        if "te_mesh_harmonic" in d:
+            out["harmonics"][t] = (ds.mesh_order.values, d.te_mesh_harmonic.values)
+    d0 = ds.isel(torque=0)
+    out["te_unloaded"] = (roll, d0.te_unloaded.values,
+                          d0.te_unloaded_um.values if "te_unloaded_um" in d0 else np.full(roll.shape, np.nan))
+    out["te_ptp"] = (np.array(torques), np.array([np.ptp(out["te"][t][1]) for t in torques]),
+                     np.array([np.ptp(out["te"][t][2]) for t in torques]))
+    out["pressure_range"] = (0.0, max(float(np.nanmax(p[2])) for p in out["bearing_pattern"].values()) or 1.0)
+    return out
+
+
+def _grid(n: int, width: float = 5.2, height: float = 3.6):
+    cols = min(n, 3)
+    rows = -(-n // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(width * cols, height * rows), squeeze=False)
+    for ax in axes.flat[n:]:
+        ax.set_visible(False)
+    return fig, list(axes.flat[:n])
+
+
 def plot_all(ds: xr.Dataset, out: Path, title: str) -> list[Path]:
-    """TE, load sharing, bearing pattern and root stress plots; returns the files written."""
+    """TE (arcsec and um on the line of action, one line per torque), TE peak-to-peak against torque, TE
+    harmonics, load sharing and bearing pattern per torque (one colour scale), root stress; returns the files."""
     out = Path(out)
+    data = plot_data(ds)
+    torques = data["torques"]
+    colours = plt.cm.viridis(np.linspace(0.0, 0.85, max(len(torques), 1)))
     files = []
-    roll = ds["roll"].values
-    fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(roll, ds.te_loaded, "o-", label=f"loaded, {ds.attrs['torque_nm']:g} N m")
-    ax.plot(roll, ds.te_unloaded, "s--", label="unloaded")
-    ax.set(xlabel="pinion roll from the pitch point [deg]", ylabel="transmission error of the gear [arcsec]",
-           title=f"{title}: transmission error")
-    ax.grid(alpha=0.3)
-    ax.legend()
+    x_roll = "pinion roll from the pitch point [deg]"
+
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4))
+    for c, t in zip(colours, torques):
+        x, y, um = data["te"][t]
+        a1.plot(x, y, "o-", ms=3, color=c, label=f"loaded, {t:g} N m")
+        a2.plot(x, um, "o-", ms=3, color=c, label=f"loaded, {t:g} N m")
+    x, y, um = data["te_unloaded"]
+    a1.plot(x, y, "k--", label="unloaded")
+    a2.plot(x, um, "k--", label="unloaded")
+    a1.set(xlabel=x_roll, ylabel="transmission error of the gear [arcsec]", title=f"{title}: TE")
+    a2.set(xlabel=x_roll, ylabel="transmission error on the line of action [um]", title=f"{title}: TE")
+    for a in (a1, a2):
+        a.grid(alpha=0.3)
+        a.legend(fontsize=8)
     _save(fig, out / "te.png")
     files.append(out / "te.png")
 
-    fig, ax = plt.subplots(figsize=(7, 4))
-    total = ds.pair_load.sum("pinion_tooth")
-    for k in ds.pinion_tooth.values:
-        share = ds.pair_load.sel(pinion_tooth=k) / total
-        if float(share.max()) > 0:
-            ax.plot(roll, share, "o-", label=f"pinion tooth {k}")
-    ax.set(xlabel="pinion roll from the pitch point [deg]", ylabel="load share [-]", ylim=(-0.02, 1.02),
-           title=f"{title}: load sharing")
-    ax.grid(alpha=0.3)
-    ax.legend()
+    fig, a1 = plt.subplots(figsize=(6, 4))
+    tq, ptp, ptp_um = data["te_ptp"]
+    order = np.argsort(tq)
+    a1.plot(tq[order], ptp[order], "o-", color="C0")
+    a1.set(xlabel="pinion torque [N m]", ylabel="loaded TE peak-to-peak [arcsec]", title=f"{title}: TE against torque")
+    a1.grid(alpha=0.3)
+    a2 = a1.twinx()
+    a2.plot(tq[order], ptp_um[order], "s--", color="C1")
+    a2.set_ylabel("loaded TE peak-to-peak on the line of action [um]", color="C1")
+    _save(fig, out / "te_ptp.png")
+    files.append(out / "te_ptp.png")
+
+    if data["harmonics"]:
+        fig, ax = plt.subplots(figsize=(7, 4))
+        w = 0.8 / len(torques)
+        for i, (c, t) in enumerate(zip(colours, torques)):
+            orders, amp = data["harmonics"][t]
+            ax.bar(orders + (i - (len(torques) - 1) / 2) * w, np.nan_to_num(amp), w, color=c, label=f"{t:g} N m")
+        ax.set(xlabel="mesh order", ylabel="loaded TE amplitude [arcsec]", title=f"{title}: TE harmonics "
+               "(orders not resolved by the positions left empty)")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3, axis="y")
+        _save(fig, out / "te_harmonics.png")
+        files.append(out / "te_harmonics.png")
+
+    fig, axes = _grid(len(torques))
+    for ax, t in zip(axes, torques):
+        for k, (x, share) in data["load_sharing"][t].items():
+            ax.plot(x, share, "o-", ms=3, label=f"pinion tooth {k}")
+        ax.set(xlabel=x_roll, ylabel="load share [-]", ylim=(-0.02, 1.02), title=f"{title}: load sharing, {t:g} N m")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
     _save(fig, out / "load_sharing.png")
     files.append(out / "load_sharing.png")
 
-    pattern = ds.pressure.max(("position", "pinion_tooth"))
-    fig, ax = plt.subplots(figsize=(7, 4))
-    m = ax.pcolormesh(ds.flank_roll, ds.face, pattern.T, shading="nearest", cmap="inferno")
-    fig.colorbar(m, ax=ax, label="max contact pressure [MPa]")
-    ax.set(xlabel="pinion involute roll angle [deg] (root -> tip)", ylabel="face width position [mm]",
-           title=f"{title}: bearing pattern (pinion flank)")
-    _save(fig, out / "bearing_pattern.png")
+    vmin, vmax = data["pressure_range"]
+    fig, axes = _grid(len(torques))
+    m = None
+    for ax, t in zip(axes, torques):
+        x, z, p = data["bearing_pattern"][t]
+        m = ax.pcolormesh(x, z, p.T, shading="nearest", cmap="inferno", vmin=vmin, vmax=vmax)
+        ax.set(xlabel="pinion involute roll angle [deg] (root -> tip)", ylabel="face width position [mm]",
+               title=f"{title}: bearing pattern, {t:g} N m")
+    fig.tight_layout()
+    fig.colorbar(m, ax=axes, label="max contact pressure [MPa], all torques")
+    fig.savefig(out / "bearing_pattern.png", dpi=110)
+    plt.close(fig)
     files.append(out / "bearing_pattern.png")
 
     fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(roll, ds.root_stress_pinion.max("pinion_tooth"), "o-", label="pinion (max over teeth)")
-    ax.plot(roll, ds.root_stress_gear.max("gear_tooth"), "s-", label="gear (max over teeth)")
-    ax.set(xlabel="pinion roll from the pitch point [deg]", ylabel="max principal fillet stress [MPa]",
-           title=f"{title}: root stress")
+    for c, t in zip(colours, torques):
+        x, sp, sg = data["root_stress"][t]
+        ax.plot(x, sp, "o-", ms=3, color=c, label=f"pinion, {t:g} N m")
+        ax.plot(x, sg, "s--", ms=3, color=c, label=f"gear, {t:g} N m")
+    ax.set(xlabel=x_roll, ylabel="max principal fillet stress [MPa]", title=f"{title}: root stress (max over teeth)")
     ax.grid(alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=8)
     _save(fig, out / "root_stress.png")
     files.append(out / "root_stress.png")
     return files

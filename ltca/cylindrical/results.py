@@ -11,31 +11,55 @@ import xarray as xr
 from .loaded import PositionResult, te_arcsec
 from .loaded_model import LoadedModel
 
-__all__ = ["position_dataset", "summary", "pressure_on_lattice", "mesh_stiffness", "MAX_LATTICE"]
+__all__ = ["position_dataset", "summary", "pressure_on_lattice", "flank_lattice", "roll_step", "mesh_stiffness",
+           "MAX_LATTICE", "MIN_LATTICE"]
 
-#: profile bins of the pressure lattice at most (the contact cells are finer at light loads; the lattice keeps
-#: the largest cell pressure of each bin, so no peak is lost)
+#: profile bins of the pressure lattice at most, and at least
 MAX_LATTICE = 240
+MIN_LATTICE = 40
 
 
-def pressure_on_lattice(lm: LoadedModel, res: PositionResult) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Pressure of one position on a fixed pinion-flank grid, (tooth, profile, face) in MPa (cells binned by
-    arc length step ``ds`` and face slice; the largest cell pressure of a bin).
+def roll_step(results: list[PositionResult], pitch_angle: float) -> float:
+    """Pinion rotation between neighbouring positions (rad); one mesh cycle when there is a single position."""
+    r = np.unique(np.round([p.roll for p in results], 12))
+    d = np.diff(r)
+    return float(d[d > 0].min()) if (d > 0).any() else float(pitch_angle)
 
+
+def flank_lattice(lm: LoadedModel, step: float) -> tuple[float, float, int]:
+    """The pinion-flank pressure lattice: (u_lo, du, n) in involute roll angle (rad), from the form circle to
+    the tip. It depends on the geometry and the position step only, never on the torque: the contact point's
+    roll angle advances by exactly the pinion rotation, so one bin per position step (between MIN_LATTICE and
+    MAX_LATTICE bins) puts each contact line in its own column of the bearing pattern without gaps."""
+    rb = lm.model.pinion.r_base
+    u_lo, u_hi = (float(np.sqrt(max((r / rb) ** 2 - 1.0, 0.0))) for r in lm.model.pinion_range())
+    n = int(np.clip(np.ceil((u_hi - u_lo) / step - 1e-9), MIN_LATTICE, MAX_LATTICE))
+    return u_lo, (u_hi - u_lo) / n, n
+
+
+def pressure_on_lattice(lm: LoadedModel, res: PositionResult, step: float | None = None
+                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pressure of one position on the fixed pinion-flank lattice (:func:`flank_lattice`), (tooth, profile, face)
+    in MPa: each cell's pressure goes to every profile bin its width [s - ds/2, s + ds/2] covers, the largest
+    cell pressure of a bin is kept (no peak is lost).
+
+    ``step`` is the pinion rotation between positions (rad; default one mesh cycle / 30).
     Returns the field and the lattice's roll angles (deg) and axial positions (mm)."""
-    from geometry.cylindrical import arc_length
     model, fid = lm.model, lm.fid
     rb = model.pinion.r_base
-    s_lo, s_hi = (arc_length(r, rb) for r in model.pinion_range())
-    ds = max(res.ds, (s_hi - s_lo) / MAX_LATTICE)   # a tiny Hertz width (tiny torque) must not blow up the file
-    n_lat = max(1, int(np.floor((s_hi - s_lo) / ds)))
-    field = np.zeros((len(lm.teeth1), n_lat, fid.slices))
+    u_lo, du, n_lat = flank_lattice(lm, step if step is not None else model.pitch_angle / 30)
+    field = np.zeros((len(lm.teeth1), n_lat, fid.slices), dtype=np.float32)
     t_idx = np.searchsorted(np.asarray(lm.teeth1), res.tooth)
-    # the contact cells follow the contact line (a sheared lattice on a helical flank): bin them by arc length
-    i = np.clip(np.floor((res.s - s_lo) / ds).astype(int), 0, n_lat - 1)
-    np.maximum.at(field, (t_idx, i, res.slice), res.pressure)
-    s = s_lo + (np.arange(n_lat) + 0.5) * ds
-    roll = np.degrees(np.sqrt(2 * s / rb))     # involute roll angle at arc length s: s = rb u^2 / 2
+    # the contact cells follow the contact line (a sheared lattice on a helical flank): bin them by roll angle,
+    # s = rb u^2 / 2 on the involute
+    ua = np.sqrt(2 * np.maximum(res.s - 0.5 * res.ds, 0.0) / rb)
+    ub = np.sqrt(2 * np.maximum(res.s + 0.5 * res.ds, 0.0) / rb)
+    i0 = np.clip(np.floor((ua - u_lo) / du).astype(int), 0, n_lat - 1)
+    i1 = np.clip(np.floor((ub - u_lo) / du).astype(int), 0, n_lat - 1)
+    for k in range(int((i1 - i0).max(initial=0)) + 1):
+        sel = i0 + k <= i1
+        np.maximum.at(field, (t_idx[sel], i0[sel] + k, res.slice[sel]), res.pressure[sel].astype(np.float32))
+    roll = np.degrees(u_lo + (np.arange(n_lat) + 0.5) * du)
     b = model.face_width
     z = -0.5 * b + b / fid.slices * (np.arange(fid.slices) + 0.5)
     return field, roll, z
@@ -56,30 +80,46 @@ def position_dataset(lm: LoadedModel, results: list[PositionResult], torque: flo
     roll = np.degrees([r.roll for r in results])
     theta = np.array([r.theta for r in results])
     theta0 = np.array([r.theta0 for r in results])
-    fields = [pressure_on_lattice(lm, r) for r in results]
+    step = roll_step(results, lm.model.pitch_angle)
+    fields = [pressure_on_lattice(lm, r, step) for r in results]
     press = np.stack([f[0] for f in fields])
+    um_loa = lm.model.pinion.r_base * 1e3          # pinion rotation (rad) -> um along the line of action
+    P, PT, GT = ("position",), ("position", "pinion_tooth"), ("position", "gear_tooth")
     ds = xr.Dataset(
         {
-            "te_loaded": ("position", te_arcsec(lm, theta), {"units": "arcsec", "long_name": "loaded TE (gear lag)"}),
-            "te_unloaded": ("position", te_arcsec(lm, theta0), {"units": "arcsec", "long_name": "unloaded TE"}),
-            "pair_load": (("position", "pinion_tooth"), np.array([[r.pair_load.get(k, 0.0) for k in teeth1]
-                                                                  for r in results]), {"units": "N"}),
-            "max_pressure": ("position", np.array([r.max_pressure for r in results]), {"units": "MPa"}),
-            "root_stress_pinion": (("position", "pinion_tooth"),
-                                   np.array([[r.root1.get(k, np.nan) for k in teeth1] for r in results]),
-                                   {"units": "MPa", "long_name": "max principal fillet stress"}),
-            "root_stress_gear": (("position", "gear_tooth"),
-                                 np.array([[r.root2.get(k, np.nan) for k in teeth2] for r in results]),
-                                 {"units": "MPa", "long_name": "max principal fillet stress"}),
-            "mesh_stiffness": ("position", mesh_stiffness(lm, theta, theta0, torque), {"units": "N/(mm um)"}),
-            "torque_residual": ("position", np.array([r.torque_residual for r in results])),
-            "torque_ratio": ("position", np.array([r.torque_ratio for r in results])),
-            "pressure": (("position", "pinion_tooth", "flank_roll", "face"), press, {"units": "MPa"}),
+            "te_loaded": (P, te_arcsec(lm, theta), {"units": "arcsec", "long_name": "loaded transmission error "
+                                                    "(gear rotation lag)"}),
+            "te_unloaded": (P, te_arcsec(lm, theta0), {"units": "arcsec", "long_name": "unloaded transmission error "
+                                                       "(gear rotation lag)"}),
+            "te_loaded_um": (P, theta * um_loa, {"units": "um", "long_name": "loaded transmission error along the "
+                                                 "line of action"}),
+            "te_unloaded_um": (P, theta0 * um_loa, {"units": "um", "long_name": "unloaded transmission error along "
+                                                    "the line of action"}),
+            "pair_load": (PT, np.array([[r.pair_load.get(k, 0.0) for k in teeth1] for r in results]),
+                          {"units": "N", "long_name": "normal load on each pinion tooth"}),
+            "max_pressure": (P, np.array([r.max_pressure for r in results]),
+                             {"units": "MPa", "long_name": "peak contact pressure"}),
+            "root_stress_pinion": (PT, np.array([[r.root1.get(k, np.nan) for k in teeth1] for r in results]),
+                                   {"units": "MPa", "long_name": "max principal fillet stress, pinion"}),
+            "root_stress_gear": (GT, np.array([[r.root2.get(k, np.nan) for k in teeth2] for r in results]),
+                                 {"units": "MPa", "long_name": "max principal fillet stress, gear"}),
+            "mesh_stiffness": (P, mesh_stiffness(lm, theta, theta0, torque),
+                               {"units": "N/(mm um)", "long_name": "mesh stiffness per face width"}),
+            "torque_residual": (P, np.array([r.torque_residual for r in results]),
+                                {"units": "1", "long_name": "relative torque balance residual"}),
+            "torque_ratio": (P, np.array([r.torque_ratio for r in results]),
+                             {"units": "1", "long_name": "gear torque / pinion torque"}),
+            "pressure": (("position", "pinion_tooth", "flank_roll", "face"), press,
+                         {"units": "MPa", "long_name": "contact pressure on the pinion flank at each position"}),
         },
-        coords={"roll": ("position", roll, {"units": "deg", "long_name": "pinion roll from the pitch point"}),
-                "pinion_tooth": teeth1, "gear_tooth": teeth2,
-                "flank_roll": ("flank_roll", fields[0][1], {"units": "deg", "long_name": "involute roll angle"}),
-                "face": ("face", fields[0][2], {"units": "mm"})},
+        coords={"position": ("position", roll, {"units": "deg", "long_name": "pinion roll from the pitch point"}),
+                "roll": ("position", roll, {"units": "deg", "long_name": "pinion roll from the pitch point "
+                                            "(the position coordinate)"}),
+                "pinion_tooth": ("pinion_tooth", teeth1, {"units": "1", "long_name": "pinion tooth index"}),
+                "gear_tooth": ("gear_tooth", teeth2, {"units": "1", "long_name": "gear tooth index"}),
+                "flank_roll": ("flank_roll", fields[0][1], {"units": "deg", "long_name": "pinion involute roll "
+                                                            "angle (root -> tip)"}),
+                "face": ("face", fields[0][2], {"units": "mm", "long_name": "axial position from mid-face"})},
         attrs={"torque_nm": torque * 1e-3, "case": lm.model.case.name},
     )
     return ds

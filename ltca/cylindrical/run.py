@@ -88,38 +88,48 @@ def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = 
 
 def run_case(case_path: str, out: str = "out", fidelity: str | None = None, positions: int | None = None,
              progress: bool = True, cache: str | None = None, write: bool = True, resume: bool = False,
-             max_output_gb: float = 2.0) -> dict:
+             max_output_gb: float = 2.0, torques: list[float] | None = None) -> dict:
     """Loaded analysis of a case over one mesh cycle; writes summary.json, results.nc, plots, VTU.
 
     The output folder is checked and locked before any work, its status kept in run.json, every file written
-    atomically; ``resume`` takes over the positions an interrupted run finished (:mod:`ltca.outputs`)."""
+    atomically; ``resume`` takes over the positions an interrupted run finished (:mod:`ltca.outputs`).
+    ``torques`` (N m) replace the case's ``[load] torque_nm`` (``--torque``)."""
     import contextlib
     with contextlib.ExitStack() as stack:
-        return _run_case(stack, case_path, out, fidelity, positions, progress, cache, write, resume, max_output_gb)
+        return _run_case(stack, case_path, out, fidelity, positions, progress, cache, write, resume, max_output_gb,
+                         torques)
 
 
-def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write, resume, max_output_gb) -> dict:
+def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write, resume, max_output_gb,
+              torques=None) -> dict:
     from ..outputs import PositionStore, RunDir, signature_of
     from ..sizing import check_run_size
     from .warnings import check_contact, design_warnings
     t_start = time.perf_counter()
     case = load_case(case_path)
+    if torques is not None:
+        import dataclasses
+
+        from ..case import check_torques
+        case = dataclasses.replace(case, torques=tuple(1e3 * t for t in check_torques(list(torques), "--torque")))
     say = _progress(progress)
     fid_name = fidelity or case.fidelity
     if fid_name not in FIDELITIES:
         raise CaseError("--fidelity", fid_name, f"one of {sorted(FIDELITIES)}")
-    n_pos = positions or case.positions
-    check_run_size(case, n_pos, FIDELITIES[fid_name], max_output_gb)
     t0 = time.perf_counter()
     model = build_model(case)
     check_contact(model, str(case_path))
     t_geom = time.perf_counter() - t0
+    from .sampling import default_positions, sampling_warnings
+    n_pos = positions or (default_positions(model) if case.positions_auto else case.positions)
+    check_run_size(case, n_pos, FIDELITIES[fid_name], max_output_gb)
     store = None
     if write:           # the output folder: checked, locked and cleaned before any FE work
         rd = stack.enter_context(RunDir(out, f"ltca run {case_path}", signature_of(
-            case_path, fidelity=fid_name, positions=n_pos), resume=resume))
+            case_path, fidelity=fid_name, positions=n_pos, torques_nm=[t * 1e-3 for t in case.torques]),
+            resume=resume))
         store = PositionStore(rd.out)
-    warnings = design_warnings(model)
+    warnings = design_warnings(model) + sampling_warnings(model, n_pos)
     for w in warnings:
         print(f"ltca run: warning: {w}", file=sys.stderr)
     fid = Fidelity.from_preset(FIDELITIES[fid_name], case.module)
@@ -147,25 +157,28 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
         datasets.append(ds)
         say(f"T = {torque * 1e-3:g} N m: loaded TE ptp {summaries[-1]['te_loaded_ptp_arcsec']:.2f} arcsec, "
             f"max pressure {summaries[-1]['max_contact_pressure_mpa']:.0f} MPa ({t_contact:.1f} s)")
+    from .sweep import harmonics_table, run_dataset, torque_record, torque_table
+    all_ds = run_dataset(datasets, n_pos, case.cycles, case.pinion.teeth)
+    records = [torque_record(all_ds, h) for h in summaries]
+    # the top-level single-torque keys are the first torque's; "torques" holds every torque's figures
     head = dict(summaries[0])
-    if len(summaries) > 1:
-        head["per_torque"] = summaries
+    head["torques"] = records
+    head["warnings"] = list(dict.fromkeys(w for h in summaries for w in h["warnings"]))
     head["timings_s"]["total"] = round(time.perf_counter() - t_start, 3)
-    for w in head.get("warnings", [])[len(warnings):]:
+    for w in head["warnings"][len(warnings):]:
         print(f"ltca run: warning: {w}", file=sys.stderr)
     if write:
-        import xarray as xr
         from ..outputs import staging, write_json_atomic
         from .report import plot_all, write_vtu
+        from .sweep import NC_ENCODING
         if store.dirty:                    # every position was taken over: the log in order
             store.rewrite_log(lines)
         head["positions_computed"], head["positions_taken_over"] = store.computed, store.taken_over
         say(f"positions computed {store.computed}, taken over from the interrupted run {store.taken_over}")
         # every file is written into a staging folder and renamed into place; summary.json last
         with staging(outdir) as stage:
-            all_ds = xr.concat(datasets, dim="torque") if len(datasets) > 1 else datasets[0]
-            all_ds.to_netcdf(stage / "results.nc", engine="h5netcdf")
-            plot_all(datasets[0], stage, case.name)
+            all_ds.to_netcdf(stage / "results.nc", engine="h5netcdf", encoding=NC_ENCODING)
+            plot_all(all_ds, stage, case.name)
             k = int(np.argmax(datasets[0].max_pressure.values))
             r = first[k]
             W1, W2 = weights_of(lm, r)
@@ -173,12 +186,15 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
             write_vtu(stage / "gear_loaded.vtu", lm.body2, W2.T @ r.force,
                       model.pair.gear_frame(model.phi_pitch - r.roll))
         write_json_atomic(outdir / "summary.json", head)
-        say(f"wrote {outdir}/summary.json, results.nc, te.png, load_sharing.png, bearing_pattern.png, "
-            "root_stress.png, pinion_loaded.vtu, gear_loaded.vtu")
-    print(json.dumps({k: head[k] for k in ("te_loaded_ptp_arcsec", "te_unloaded_ptp_arcsec",
+        say(f"wrote {outdir}/summary.json, results.nc, te.png, te_ptp.png, te_harmonics.png, load_sharing.png, "
+            "bearing_pattern.png, root_stress.png, pinion_loaded.vtu, gear_loaded.vtu")
+    print(json.dumps({k: head[k] for k in ("torque_nm", "te_loaded_ptp_arcsec", "te_unloaded_ptp_arcsec",
                                            "max_contact_pressure_mpa", "max_root_stress_mpa",
                                            "mesh_stiffness_mean_n_per_mm_um", "max_pairs_in_contact",
                                            "converged", "timings_s")}, indent=1))
+    print(f"{case.name}: {n_pos} positions per mesh cycle x {case.cycles} cycle(s), every torque:")
+    print(torque_table(records))
+    print(harmonics_table(all_ds))
     return head
 
 

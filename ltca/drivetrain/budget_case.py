@@ -130,10 +130,15 @@ def load_budget_case(path: str) -> tuple[DriveTrain, np.ndarray]:
         head = doc.get("budget")
         if not isinstance(head, dict):
             raise CaseError("budget", head, "a [budget] table")
-        _known(head, {"title", "torques_Nm", "initial_backlash_deg", "note"}, "budget")
-        if "torques_Nm" not in head:
-            raise CaseError("budget.torques_Nm", None, f"required; {TORQUES.words()}")
-        torques = TORQUES.check(head["torques_Nm"], "budget.torques_Nm", None)
+        for old in ("torques_Nm", "torques_nm"):
+            if old in head:
+                raise CaseError(f"budget.{old}", head[old], "renamed: write torque_nm = a number or a list of "
+                                "numbers (N m), the spelling of every case kind")
+        _known(head, {"title", "torque_nm", "initial_backlash_deg", "note"}, "budget")
+        if "torque_nm" not in head:
+            raise CaseError("budget.torque_nm", None, f"required; {TORQUES.words()}")
+        t = head["torque_nm"]
+        torques = TORQUES.check(t if isinstance(t, list) else [t], "budget.torque_nm", None)
         title = _text(head, "title", "budget")
         _text(head, "note", "budget")
         jphi = _num(head, "initial_backlash_deg", "budget", strict=False, default=0.0) * DEG

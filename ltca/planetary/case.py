@@ -13,7 +13,7 @@ Tables (engineer's units, converted once here to mm, rad, N mm, MPa):
   housing);
 * ``[material]`` name, youngs_modulus_mpa, poisson_ratio, sigma_flim_mpa (root bending endurance, for
   the ISO 6336-3 rated torque);
-* ``[load]`` torques_percent_of_rated (list) or torques_nm (list), on the satellite, both directions;
+* ``[load]`` torques_percent_of_rated (list) or torque_nm (a number or a list), on the satellite, both directions;
 * ``[analysis]`` positions (per mesh cycle), fidelity, far_teeth (``none`` | ``full``).
 
 Every mistake raises :class:`ltca.errors.CaseError` naming the field (exit status 2 on the command line);
@@ -81,7 +81,7 @@ _MATERIAL = {"name": (str, False, "steel", None, "a string"),
              "sigma_flim_mpa": (_N, False, RatingInputs().sigma_Flim, lambda v: 0 < v <= 2000,
                                 "a number in (0, 2000] MPa")}
 _LOAD = {"torques_percent_of_rated": (list, False, None, None, "a list of numbers in (0, 500] %"),
-         "torques_nm": (list, False, None, None, "a list of numbers in (0, 1e6] N m")}
+         "torque_nm": ((list, int, float), False, None, None, "a number or a list of numbers in (0, 1e6] N m")}
 _ANALYSIS = {"positions": (int, False, 6, lambda v: 1 <= v <= 500, "an integer in [1, 500] (per mesh cycle)"),
              "fidelity": (str, False, "coarse", lambda v: v in FIDELITIES, f"one of {sorted(FIDELITIES)}"),
              "far_teeth": (str, False, "none", lambda v: v in ("none", "full"), "'none' or 'full'")}
@@ -206,12 +206,16 @@ def parse_planetary_case(data: dict, file: str | None = None) -> PlanetaryCase:
              shaper_addendum_coef="shaper_addendum", shaper_tip_radius_coef="shaper_tip_radius",
              far_tip_clearance="far_tip_clearance_mm", d_tip="tip_diameter_mm"))
     mat = _table(data, "material", _MATERIAL, file, required=False)
+    if isinstance(data.get("load"), dict) and "torques_nm" in data["load"]:
+        raise CaseError("load.torques_nm", data["load"]["torques_nm"], "renamed: write torque_nm = a number or a "
+                        "list of numbers (N m)", file)
     load = _table(data, "load", _LOAD, file)
-    if (load["torques_nm"] is None) == (load["torques_percent_of_rated"] is None):
-        raise CaseError("load", data.get("load"), "exactly one of torques_nm or torques_percent_of_rated", file)
+    if (load["torque_nm"] is None) == (load["torques_percent_of_rated"] is None):
+        raise CaseError("load", data.get("load"), "exactly one of torque_nm or torques_percent_of_rated", file)
     torques, fractions = (), ()
-    if load["torques_nm"] is not None:
-        torques = tuple(1e3 * t for t in _torques(load["torques_nm"], "load.torques_nm", 0, 1e6, file))
+    if load["torque_nm"] is not None:
+        t = load["torque_nm"]
+        torques = tuple(1e3 * t for t in _torques(t if isinstance(t, list) else [t], "load.torque_nm", 0, 1e6, file))
     else:
         fractions = tuple(0.01 * t for t in _torques(load["torques_percent_of_rated"],
                                                       "load.torques_percent_of_rated", 0, 500, file))

@@ -111,11 +111,19 @@ def summarise(results: list, direction: int, torque: float, rb1: float) -> dict:
                                    forces_n={k: float(v) for k, v in rc["pair_load"].items()}) for rc in recs])
 
 
-def run_planetary(case_path, out="out", fidelity=None, n_positions=None, progress=True, cache=None) -> dict:
-    """Loaded contact of the satellite in the wheel at every torque of the case, both directions."""
+def run_planetary(case_path, out="out", fidelity=None, n_positions=None, progress=True, cache=None,
+                  torques_nm=None) -> dict:
+    """Loaded contact of the satellite in the wheel at every torque of the case, both directions.
+    ``torques_nm`` (``--torque``) replace the case's torques."""
     say = print if progress else (lambda *a, **k: None)
     t_start = time.perf_counter()
     case = load_planetary_case(case_path)
+    if torques_nm is not None:
+        import dataclasses
+
+        from ..case import check_torques
+        case = dataclasses.replace(case, torques=tuple(1e3 * t for t in check_torques(list(torques_nm), "--torque")),
+                                   torque_fractions=())
     sm = build_satellite_model(case)
     rating = rated_torque(sm.satellite, case.rating)
     torques = case.torques or tuple(f * rating.torque_Nm * 1e3 for f in case.torque_fractions)

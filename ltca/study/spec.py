@@ -5,7 +5,7 @@ A study TOML (paths relative to the study file)::
     [study]
     name = "FZG C14 torque x misalignment"
     case = "../cases/fzg_c14.toml"       # the base case
-    torques_nm = [50, 100, 200]           # the torque dimension (or "load.torque_nm" in [grid]; else the case's)
+    torque_nm = [50, 100, 200]            # the torque dimension (or "load.torque_nm" in [grid]; else the case's)
 
     [set]                                 # fixed overrides of the base case, dotted case keys
     "analysis.positions" = 16
@@ -82,8 +82,8 @@ def _check_key(key: str, where: str) -> None:
         near = sorted(k for k in keys if k.split(".")[-1] == key.split(".")[-1])
         raise CaseError(where, key, "unknown key to vary: a dotted case key such as 'load.torque_nm' or "
                         "'pinion.modifications.lead_crowning_um'" + (f" (did you mean {near}?)" if near else ""))
-    if key in ("load.torques_nm", "load.driver"):
-        raise CaseError(where, key, "not variable; vary 'load.torque_nm' or give [study] torques_nm")
+    if key == "load.driver":
+        raise CaseError(where, key, "not variable; vary 'load.torque_nm' or give [study] torque_nm")
 
 
 def _table(data: dict, name: str, file: str) -> dict:
@@ -127,10 +127,13 @@ class Study:
         if extra:
             raise CaseError(sorted(extra)[0], "...", f"unknown table; allowed are {sorted(_SECTIONS)}", file)
         st = _table(data, "study", file)
-        unknown = set(st) - {"name", "case", "torques_nm", "description"}
+        if "torques_nm" in st:
+            raise CaseError("study.torques_nm", st["torques_nm"], "renamed: write torque_nm = a number or a list of "
+                            "numbers (N m), the spelling of the case files", file)
+        unknown = set(st) - {"name", "case", "torque_nm", "description"}
         if unknown:
             raise CaseError(f"study.{sorted(unknown)[0]}", st[sorted(unknown)[0]],
-                            "unknown key; allowed are case, name, description, torques_nm", file)
+                            "unknown key; allowed are case, name, description, torque_nm", file)
         if not isinstance(st.get("case"), str):
             raise CaseError("study.case", st.get("case"), "the base case file (.toml), relative to the study", file)
         case_path = Path(base_dir) / st["case"]
@@ -151,11 +154,12 @@ class Study:
                 torques = _torques(values, f"grid.{key}", file)
             else:
                 grid[key] = list(values)
-        if "torques_nm" in st:
+        if "torque_nm" in st:
             if torques is not None:
-                raise CaseError("study.torques_nm", st["torques_nm"], "given once: here or as grid 'load.torque_nm'",
+                raise CaseError("study.torque_nm", st["torque_nm"], "given once: here or as grid 'load.torque_nm'",
                                 file)
-            torques = _torques(st["torques_nm"], "study.torques_nm", file)
+            t = st["torque_nm"]
+            torques = _torques(t if isinstance(t, list) else [t], "study.torque_nm", file)
         raw_variants = data.get("variants", [])
         if not isinstance(raw_variants, list) or any(not isinstance(v, dict) for v in raw_variants):
             raise CaseError("variants", raw_variants, "an array of tables [[variants]]", file)
@@ -172,7 +176,7 @@ class Study:
                     _check_key(key, f"variants[{i}].{key}")
                     if key.startswith("load."):
                         raise CaseError(f"variants[{i}].{key}", v[key], "not a per-variant key: the torques are a "
-                                        "dimension of the study ([study] torques_nm or grid 'load.torque_nm')", file)
+                                        "dimension of the study ([study] torque_nm or grid 'load.torque_nm')", file)
         mc = None
         if "monte_carlo" in data:
             m = _table(data, "monte_carlo", file)
@@ -194,8 +198,7 @@ class Study:
                 member_tolerances(base_case, member, mc.grade)
         if torques is None:
             torques = tuple(t * 1e-3 for t in base_case.torques)
-        base.setdefault("load", {}).pop("torque_nm", None)
-        base["load"]["torques_nm"] = list(torques)
+        base.setdefault("load", {})["torque_nm"] = list(torques)
         study = cls(st.get("name", Path(file).stem if file else "study"), base, torques, grid,
                     tuple(raw_variants), mc, file)
         for v in study.expand():                   # every variant must be a valid case
