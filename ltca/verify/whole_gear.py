@@ -114,7 +114,7 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     m2 = build_full_gear(_spec(p2, model.r_bore2, model.web2, b, lm.teeth2, st, L2))
     t_mesh = time.perf_counter() - t0
     side2 = "right" if model.gear_side > 0 else "left"
-    master = tuple(n for n in m2.facets for j in lm.teeth2 if n == f"flank_{j}_{side2}" or n.startswith(f"tip_{j}"))
+    master = tuple(n for n in m2.facets for j in lm.teeth2 if n in (f"flank_{j}_{side2}", f"tip_{j}", f"tip_{j}_left", f"tip_{j}_right"))
     f1, f2, pairs, loaded = dict(m1.facets), dict(m2.facets), [], []
     for i, (k, _, _) in enumerate(lines):
         f1[f"band_{k}"] = facets_near_lines(m1, (f"flank_{k}_right",), [L1[i]], st.halo)
