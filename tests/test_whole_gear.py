@@ -84,3 +84,11 @@ def test_whole_gear_calculix_pitch_point_bore20(tmp_path):
     row = json.loads((tmp_path / "whole_gear.json").read_text())["rows"][0]
     assert abs(row["te_diff_pct"]) < 3.0 and row["share_diff"] < 0.03 and abs(row["k_diff_pct"]) < 3.0, row
     assert rc == 0
+
+
+def test_calculix_whole_argument_errors_before_ccx(tmp_path, capsys):
+    """Bad positions exit 2 with the field named, whether or not ccx is installed."""
+    from ltca.cli import main
+    rc = main(["validate", "--reference", "calculix-whole", "--case", str(CASES / "fzg_c14.toml"),
+               "--positions", "40", "--out", str(tmp_path)])
+    assert rc == 2 and "--positions" in capsys.readouterr().err
