@@ -70,11 +70,22 @@ def _cmd_convergence(a: argparse.Namespace) -> int:
 
 
 def _cmd_validate(a: argparse.Namespace) -> int:
+    if a.reference == "calculix-whole":
+        from fem.calculix.run import CcxNotFound
+        from .verify.whole_check import command_line, run_whole_validation
+        try:
+            return run_whole_validation(a.case, a.positions, a.out, band_um=a.band,
+                                        refine=1 if a.refine is None else a.refine, fidelity=a.fidelity,
+                                        freeze=a.freeze, command=command_line(sys.argv[1:]), progress=not a.quiet)
+        except CcxNotFound as exc:
+            print(f"ltca validate: {exc}", file=sys.stderr)
+            return 2
     if a.reference == "calculix":
         from fem.calculix.run import CcxNotFound
         from .verify.crosscheck import run_calculix_validation
         try:
-            return run_calculix_validation(a.case, a.positions, a.out, refine=a.refine, level=a.level,
+            return run_calculix_validation(a.case, a.positions, a.out, refine=2 if a.refine is None else a.refine,
+                                           level=a.level,
                                            band_um=a.band, coarse_body=a.coarse_body, pressure=a.pressure_ladder,
                                            progress=not a.quiet)
         except CcxNotFound as exc:
@@ -203,14 +214,17 @@ def build_parser() -> argparse.ArgumentParser:
     v = sub.add_parser("validate", help="run the validation cases: measured vs reference, error, time",
                        description="Runs the validation cases and prints measured vs reference, error and time.")
     v.add_argument("--out", default="out/validate", help="output directory (default: out/validate)")
-    v.add_argument("--reference", choices=["analytic", "calculix"], default="analytic",
-                   help="analytic references and tables (default) or the CalculiX cross-check (slow: "
-                        "5-15 min per position on 2 cores, plus 30-45 min per pressure ladder)")
+    v.add_argument("--reference", choices=["analytic", "calculix", "calculix-whole"], default="analytic",
+                   help="analytic references and tables (default); calculix: the CalculiX cross-check on our body "
+                        "(slow: 5-15 min per position on 2 cores, plus 30-45 min per pressure ladder); calculix-whole: "
+                        "CalculiX on whole gears with every tooth and their own supports, independent of our body "
+                        "(5-10 min per position)")
     v.add_argument("--case", default="cases/fzg_c14.toml", help="case for --reference calculix")
     v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
                    help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9)")
-    v.add_argument("--refine", type=int, default=2,
-                   help="CalculiX contact-band refinements at the first position (its convergence check)")
+    v.add_argument("--refine", type=int, default=None,
+                   help="CalculiX contact-band refinements at the first position (its convergence check; default 2, "
+                        "calculix-whole 1)")
     v.add_argument("--level", type=int, default=1,
                    help="the rung of the CalculiX ladder used at every position (0 coarsest; default 1)")
     v.add_argument("--band", type=float, metavar="UM",
@@ -222,6 +236,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="where CalculiX refines a mid-face window of the narrowest contact three times for a "
                         "converged peak pressure: auto (positions whose narrowest contact has < 3 band elements per "
                         "half-width, other than the band ladder's first position), all or none")
+    v.add_argument("--fidelity", choices=["coarse", "default", "fine"], default="default",
+                   help="our fidelity for --reference calculix-whole")
+    v.add_argument("--freeze", metavar="JSON",
+                   help="calculix-whole: write the CalculiX results as a frozen reference with provenance")
     v.add_argument("--quiet", action="store_true", help="no progress output")
     v.set_defaults(func=_cmd_validate)
 

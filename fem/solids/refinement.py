@@ -18,7 +18,7 @@ from .gear_body import GearBodySpec, build_gear_body
 from .segment import build_segment
 from .spec import SegmentMesh, SegmentSpec
 
-__all__ = ["ContactLine", "build_refined_segment", "facets_near_lines"]
+__all__ = ["ContactLine", "build_refined_segment", "facets_near_lines", "line_size_expression"]
 
 
 @dataclass(frozen=True)
@@ -31,7 +31,7 @@ class ContactLine:
     normal: np.ndarray
 
 
-def _line_size_expression(line: ContactLine, h: float, half_band: float, grow_across: float,
+def line_size_expression(line: ContactLine, h: float, half_band: float, grow_across: float,
                           grow_depth: float) -> str:
     """gmsh MathEval size: h within ``half_band`` of the line on the flank, growing linearly outside it."""
     p0, p1 = np.asarray(line.p0, float), np.asarray(line.p1, float)
@@ -65,8 +65,8 @@ def build_refined_segment(spec: SegmentSpec | GearBodySpec, lines: list[ContactL
     for h in (h_contact, *(f[1] for f in focus)):
         if not 0 < h <= spec.h_flank:
             raise ValueError(f"contact element size {h} must be in (0, h_flank = {spec.h_flank}]")
-    exprs = tuple(_line_size_expression(ln, h_contact, half_band, grow_across, grow_depth) for ln in lines)
-    exprs += tuple(_line_size_expression(ln, h, hb, grow_across, grow_depth) for ln, h, hb in focus)
+    exprs = tuple(line_size_expression(ln, h_contact, half_band, grow_across, grow_depth) for ln in lines)
+    exprs += tuple(line_size_expression(ln, h, hb, grow_across, grow_depth) for ln, h, hb in focus)
     refined = dataclasses.replace(spec, size_fields=exprs)
     if isinstance(spec, GearBodySpec):
         return build_gear_body(refined)

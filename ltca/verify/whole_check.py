@@ -1,0 +1,159 @@
+"""``ltca validate --reference calculix-whole``: ours against CalculiX on whole gears with every tooth.
+
+Per position: our loaded contact (:func:`ltca.verify.calculix.solve_ours`, compliance of our whole-gear
+body) and CalculiX on the independent full-gear model (:func:`ltca.verify.whole_gear.solve_whole`).
+Compared: loaded TE (arcsec of the gear), load share per pinion tooth, mesh stiffness N/(mm um), peak
+flank pressure (CalculiX: elliptic fit; information only) and wall time. The first position is also
+solved with the contact band refined ``refine`` times by 1.5 (CalculiX's own convergence check of the TE).
+Bounds (issue 11): TE 3 %, share 0.03, stiffness 3 %. CalculiX runs are kept under ``out`` and reused.
+
+With ``freeze`` the CalculiX results (finest band at the first position, the base band elsewhere) are
+written as a frozen reference (JSON) with their provenance: CalculiX version, deck hash, mesh size,
+contact element size and the command that regenerates them (issue 18).
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import shlex
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from .calculix import penalty_slope, solve_ours
+from .whole_gear import stiffness, solve_whole, whole_settings
+
+__all__ = ["BOUNDS_WHOLE", "run_whole_validation", "ccx_version"]
+
+BOUNDS_WHOLE = {"te_rel": 0.03, "share_abs": 0.03, "stiffness_rel": 0.03}   # issue 11
+
+
+def ccx_version() -> str:
+    """The first line of ``ccx -v`` that names the version."""
+    from fem.calculix.run import ccx_path
+    out = subprocess.run([ccx_path(), "-v"], capture_output=True, text=True, timeout=30).stdout
+    return next((ln.strip() for ln in out.splitlines() if "Version" in ln), out.strip())
+
+
+def _row(roll, mine, c, lm, torque, teeth):
+    sm, sc = mine.share(teeth), c.share(teeth)
+    k_ours = stiffness(lm, mine.info["theta"], mine.info["theta0"], torque)
+    return {"roll_deg": roll, "te_ours": mine.te, "te_ccx": c.te, "te_diff_pct": 100 * (mine.te / c.te - 1),
+            "share_ours": sm, "share_ccx": sc, "share_diff": max(abs(sm[k] - sc[k]) for k in teeth),
+            "k_ours": k_ours, "k_ccx": c.stiffness, "k_diff_pct": 100 * (k_ours / c.stiffness - 1),
+            "p_ours": mine.max_pressure, "p_ccx": c.max_pressure, "t_ours": mine.wall, "t_ccx": c.wall,
+            "ccx_nodes": c.info["nodes"], "band_um": 1e3 * c.info["h_contact_mm"]}
+
+
+def run_whole_validation(case_path: str, positions: list[float], out: str, band_um: float | None = None,
+                         refine: int = 1, fidelity: str = "default", freeze: str | None = None,
+                         command: str | None = None, progress: bool = True) -> int:
+    """Ours against whole-gear CalculiX at pinion rolls ``positions`` (deg); returns 0 within bounds, else 1.
+
+    Prints the table and writes ``whole_gear.csv`` and ``whole_gear.json`` to ``out``. Raises ``CaseError``
+    on bad arguments (before looking for ``ccx``) and ``CcxNotFound`` when ``ccx`` is missing."""
+    from fem.calculix.run import ccx_path
+    from ..case import FIDELITIES, load_case
+    from ..errors import CaseError
+    from ..cylindrical.loaded_model import Fidelity, prepare
+    from ..cylindrical.model import build_model
+    from ..cylindrical.run import cycle_rolls
+    case = load_case(case_path)
+    pitch_deg = 360.0 / case.pinion.teeth
+    rolls = list(positions or [0.0, -9.0])
+    if any(not np.isfinite(r) or abs(r) > 0.5 * pitch_deg + 1e-9 for r in rolls):
+        raise CaseError("--positions", rolls, f"roll angles in deg with |roll| <= {0.5 * pitch_deg:.4f}")
+    if not 0 <= refine <= 3:
+        raise CaseError("--refine", refine, "an integer from 0 to 3")
+    if band_um is not None and not 20.0 <= band_um <= 2000.0:
+        raise CaseError("--band", band_um, "a contact-band element size from 20 to 2000 um")
+    if fidelity not in FIDELITIES:
+        raise CaseError("--fidelity", fidelity, ", ".join(FIDELITIES))
+    if abs(case.helix_angle) > 1e-9 or case.gear.internal:
+        raise CaseError("--case", case_path, "an external spur pair (the whole-gear CalculiX model is spur only)")
+    ccx_path()
+    say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
+    torque = case.torques[0]
+    t0 = time.perf_counter()
+    lm = prepare(build_model(case), Fidelity.from_preset(FIDELITIES[fidelity], case.module),
+                 cycle_rolls(case.positions, case.pinion.teeth), torque, progress=say)
+    t_prepare = time.perf_counter() - t0
+    base = whole_settings(lm.b_nom, case.module, band_um)
+    outdir = Path(out)
+    outdir.mkdir(parents=True, exist_ok=True)
+
+    def ccx(roll, st):
+        return solve_whole(lm, roll, torque, st, outdir / f"ccx_whole_r{roll:+.4f}_b{1e3 * st.h_contact:.0f}", say=say)
+    rows, ladder = [], []
+    for rd in rolls:
+        mine, _ = solve_ours(lm, np.radians(rd), torque)
+        c = ccx(rd, base)
+        teeth = sorted(set(mine.pair_load) | set(c.pair_load))
+        rows.append(_row(rd, mine, c, lm, torque, teeth))
+    for i in range(refine + 1):
+        h = base.h_contact / 1.5 ** i
+        ladder.append(ccx(rolls[0], dataclasses.replace(base, h_contact=h, half_band=base.half_band - base.h_contact + h,
+                                                        penalty=penalty_slope(h))))
+    sh = lambda d: "/".join(f"{d[k]:.3f}" for k in sorted(d))
+    lines = [f"{case.name} at {torque * 1e-3:g} N m: ours ({fidelity}) against CalculiX on whole gears, every tooth "
+             f"(contact band {1e3 * base.h_contact:.0f} um)",
+             f"{'roll':>6} {'TE ours':>8} {'TE ccx':>8} {'dTE%':>6} {'share ours':>17} {'share ccx':>17} {'dsh':>5} "
+             f"{'c ours':>6} {'c ccx':>6} {'dc%':>6} {'p ours':>6} {'p ccx':>6} {'t ours':>6} {'t ccx':>6}"]
+    ok_all = True
+    for r in rows:
+        ok = (abs(r["te_diff_pct"]) <= 100 * BOUNDS_WHOLE["te_rel"] and r["share_diff"] <= BOUNDS_WHOLE["share_abs"]
+              and abs(r["k_diff_pct"]) <= 100 * BOUNDS_WHOLE["stiffness_rel"])
+        r["ok"] = ok
+        ok_all &= ok
+        lines.append(f"{r['roll_deg']:6.2f} {r['te_ours']:8.3f} {r['te_ccx']:8.3f} {r['te_diff_pct']:+6.2f} "
+                     f"{sh(r['share_ours']):>17} {sh(r['share_ccx']):>17} {r['share_diff']:5.3f} {r['k_ours']:6.2f} "
+                     f"{r['k_ccx']:6.2f} {r['k_diff_pct']:+6.2f} {r['p_ours']:6.0f} {r['p_ccx']:6.0f} "
+                     f"{r['t_ours']:6.2f} {r['t_ccx']:6.0f}{'' if ok else '  OUT'}")
+    lines.append(f"ours: compliance {t_prepare:.1f} s once, then the contact solve per position (t ours); CalculiX: "
+                 "mesh + solve per position (t ccx), s")
+    lines.append(f"CalculiX contact-band refinement at roll {rolls[0]:g} (band -> TE, stiffness, peak pressure, nodes, s):")
+    for c in ladder:
+        lines.append(f"  {1e3 * c.info['h_contact_mm']:5.0f} um  TE {c.te:8.3f}  c {c.stiffness:6.3f}  "
+                     f"p {c.max_pressure:6.0f}  {c.info['nodes']} nodes  {c.wall:.0f} s")
+    if len(ladder) >= 2:
+        lines.append(f"  TE change over the last refinement: {100 * (ladder[-1].te / ladder[-2].te - 1):+.2f} %")
+    print("\n".join(lines))
+    keys = ["roll_deg", "te_ours", "te_ccx", "te_diff_pct", "share_ours", "share_ccx", "share_diff", "k_ours",
+            "k_ccx", "k_diff_pct", "p_ours", "p_ccx", "t_ours", "t_ccx", "ccx_nodes", "band_um", "ok"]
+    fmt = lambda v: sh(v) if isinstance(v, dict) else str(v)
+    (outdir / "whole_gear.csv").write_text(",".join(keys) + "\n" + "".join(
+        ",".join(fmt(r[k]) for k in keys) + "\n" for r in rows))
+    (outdir / "whole_gear.json").write_text(json.dumps({"rows": rows, "refinement": [
+        {"h_contact_um": 1e3 * c.info["h_contact_mm"], "te": c.te, "stiffness": c.stiffness,
+         "max_pressure": c.max_pressure, "nodes": c.info["nodes"], "wall": c.wall} for c in ladder]}, indent=1))
+    if freeze:
+        finest = {rolls[0]: ladder[-1]} | {rd: ccx(rd, base) for rd in rolls[1:]}
+        _freeze(freeze, case_path, lm, torque, finest, ladder, command)
+    return 0 if ok_all else 1
+
+
+def _freeze(path: str, case_path: str, lm, torque: float, runs: dict, ladder, command: str | None) -> None:
+    """Write the frozen CalculiX reference (see the module docstring)."""
+    rec = {"case": case_path, "torque_nm": torque * 1e-3, "calculix_version": ccx_version(),
+           "model": "whole gears, every tooth, bore fixed (gear) / bore on a rigid body turning about the axis "
+                    "(pinion); fem.solids.full_gear + ltca.verify.whole_gear",
+           "command": command or "", "units": {"te": "arcsec of the gear", "stiffness": "N/(mm um)",
+                                               "pair_load": "N", "max_pressure": "MPa"},
+           "convergence": [{"roll_deg": c.roll_deg, "h_contact_um": 1e3 * c.info["h_contact_mm"], "te": c.te,
+                            "stiffness": c.stiffness, "max_pressure": c.max_pressure} for c in ladder],
+           "positions": [{"roll_deg": rd, "te": c.te, "stiffness": c.stiffness,
+                          "share": {str(k): v for k, v in c.share(sorted(c.pair_load)).items()},
+                          "pair_load": {str(k): v for k, v in c.pair_load.items()}, "max_pressure": c.max_pressure,
+                          "deck_sha256": c.info["deck_sha256"], "nodes": c.info["nodes"],
+                          "elements": c.info["elements"], "h_contact_um": 1e3 * c.info["h_contact_mm"],
+                          "ccx_wall_s": c.info["ccx_wall"]} for rd, c in runs.items()]}
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    Path(path).write_text(json.dumps(rec, indent=1) + "\n")
+
+
+def command_line(argv: list[str]) -> str:
+    """The command that regenerates a frozen reference, as typed."""
+    return "ltca " + " ".join(shlex.quote(a) for a in argv)
