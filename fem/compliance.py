@@ -157,7 +157,7 @@ def _patch_halfspace(quadrature, Y, Nn, n_teeth, E, nu) -> np.ndarray:
     receiver: depth and lateral distance are measured along and across its normal, the patch traction is
     the cosine bell of :func:`fem.loads.patch_loads` on the facet quadrature points (``quadrature``, from
     :func:`fem.loads.patch_quadrature`)."""
-    from .halfspace import point_influence
+    from .halfspace import point_influence_sq
     patch, _, pts, w = quadrature
     n = len(Y)
     m = n // n_teeth
@@ -165,10 +165,13 @@ def _patch_halfspace(quadrature, Y, Nn, n_teeth, E, nu) -> np.ndarray:
     for t in range(n_teeth):
         rows = np.arange(t * m, (t + 1) * m)
         hit = (patch >= t * m) & (patch < (t + 1) * m)
-        r = pts[hit][None, :, :] - Y[rows][:, None, :]                 # (m, k, 3)
-        depth = np.einsum("akc,ac->ak", r, Nn[rows])
-        lateral = np.linalg.norm(r - depth[..., None] * Nn[rows][:, None, :], axis=-1)
-        G = point_influence(lateral, np.abs(depth), E, nu)
+        P, Yr, Nr = pts[hit], Y[rows], Nn[rows]
+        # distance and depth of every (receiver, source) pair by matrix products, without (m, k, 3) temporaries:
+        # |p - y|^2 = |p|^2 + |y|^2 - 2 y.p and depth = (p - y).n
+        dist2 = np.einsum("kc,kc->k", P, P)[None, :] + np.einsum("ac,ac->a", Yr, Yr)[:, None] - 2.0 * (Yr @ P.T)
+        depth = Nr @ P.T - np.einsum("ac,ac->a", Yr, Nr)[:, None]
+        depth *= depth
+        G = point_influence_sq(np.maximum(dist2, depth), depth, E, nu)
         S = sp.csr_matrix((w[hit], (np.arange(hit.sum()), patch[hit] - t * m)), shape=(int(hit.sum()), m))
         H[np.ix_(rows, rows)] = np.asarray((S.T @ G.T).T)
     return H

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = [
+__all__ = ["point_influence_sq", 
     "surface_influence",
     "subsurface_influence",
     "near_field_correction",
@@ -119,13 +119,24 @@ def point_influence(lateral, depth, E: float, nu: float) -> np.ndarray:
     Boussinesq: u_z = (1 + nu) / (2 pi E) [2 (1 - nu) / rho + z^2 / rho^3], rho = sqrt(r^2 + z^2)
     (Johnson, Contact Mechanics, 1985, eq. 3.22c), mm/N; at z = 0 it is (1 - nu^2) / (pi E r).
     ``lateral`` and ``depth`` (mm, broadcast) must not both vanish."""
-    _check_material(E, nu)
     r = np.asarray(lateral, dtype=float)
     z = np.asarray(depth, dtype=float)
-    rho = np.sqrt(r * r + z * z)
-    if np.any(rho <= 0):
+    return point_influence_sq(r * r + z * z, z * z, E, nu)
+
+
+def point_influence_sq(dist2, depth2, E: float, nu: float) -> np.ndarray:
+    """:func:`point_influence` from the squared distance rho^2 and the squared depth z^2 (mm^2), in place on
+    large arrays: u_z = (1 + nu) / (2 pi E rho) [2 (1 - nu) + z^2 / rho^2]."""
+    _check_material(E, nu)
+    rho2 = np.array(dist2, dtype=float)
+    if np.any(rho2 <= 0):
         raise ValueError("point_influence: the load point itself (lateral = depth = 0) is singular")
-    return (1.0 + nu) / (2.0 * np.pi * E) * (2.0 * (1.0 - nu) / rho + z * z / rho ** 3)
+    out = np.divide(depth2, rho2)
+    out += 2.0 * (1.0 - nu)
+    np.sqrt(rho2, out=rho2)
+    out /= rho2
+    out *= (1.0 + nu) / (2.0 * np.pi * E)
+    return out
 
 
 def surface_influence(dx, dy, a, b, E: float, nu: float) -> np.ndarray:
