@@ -32,7 +32,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["point_influence_sq", 
+__all__ = [
+    "point_influence_sq",
     "surface_influence",
     "subsurface_influence",
     "near_field_correction",
