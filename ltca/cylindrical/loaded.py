@@ -96,12 +96,12 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         F = sol.force
         theta_guess = sol.approach
         more, i0 = False, 0
-        for k, j, _, sv, _, open_lo, open_hi in strips:
-            f = F[i0:i0 + len(sv)]
-            if (open_lo and f[0] > 1e-9 * torque / rb1) or (open_hi and f[-1] > 1e-9 * torque / rb1):
-                widen[(k, j)] = widen.get((k, j), 1.0) * 1.7
+        for st in strips:
+            f = F[i0:i0 + len(st.s)]
+            if (st.open_lo and f[0] > 1e-9 * torque / rb1) or (st.open_hi and f[-1] > 1e-9 * torque / rb1):
+                widen[(st.tooth, st.slice)] = widen.get((st.tooth, st.slice), 1.0) * 1.7
                 more = True
-            i0 += len(sv)
+            i0 += len(st.s)
         if not more:
             break
     T1, T2 = float(F @ sy.lever1), float(F @ sy.lever2)
