@@ -19,11 +19,15 @@ __all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_cas
 DEG = math.pi / 180.0
 
 #: Fidelity presets: flank element size (x module), body element size (x module), compliance grid
-#: (profile x face per flank), contact cells across the Hertz width, face slices, near-field on/off.
+#: (profile x face per flank), contact cells across the Hertz width, face slices, near-field on/off, and the
+#: longest contact cell along a helical face (x module; more slices on a wide helical face).
 FIDELITIES: dict[str, dict[str, Any]] = {
-    "coarse": dict(h_flank=0.45, h_body=1.6, grid=(7, 6), cells_per_b=3, slices=8, near_field=True, window=1.8),
-    "default": dict(h_flank=0.3, h_body=1.3, grid=(9, 8), cells_per_b=5, slices=14, near_field=True, window=2.0),
-    "fine": dict(h_flank=0.2, h_body=1.0, grid=(12, 10), cells_per_b=8, slices=20, near_field=True, window=2.5),
+    "coarse": dict(h_flank=0.45, h_body=1.6, grid=(7, 6), cells_per_b=3, slices=8, near_field=True, window=1.8,
+                   slice_length=0.5),
+    "default": dict(h_flank=0.3, h_body=1.3, grid=(9, 8), cells_per_b=5, slices=14, near_field=True, window=2.0,
+                    slice_length=0.25),
+    "fine": dict(h_flank=0.2, h_body=1.0, grid=(12, 10), cells_per_b=8, slices=20, near_field=True, window=2.5,
+                 slice_length=0.17),
 }
 
 
@@ -39,6 +43,8 @@ class Modifications:
     pitch_errors: tuple[tuple[int, float], ...] = ()  # (tooth, position error in mm): + drive flank moved back
     profile_slope: float = 0.0         # f_Halpha, mm (+ = tip relieved)
     roll_ratio_error: float = 0.0      # generating-chain ratio error e (-), turned into a profile slope
+    tip_edge_radius: float = 0.0       # mm, rounding of the tip edges (tangent to flank and tip circle); 0: sharp
+    tip_chamfer: float = 0.0           # mm, leg of a chamfer of the tip edges (along flank and tip circle); 0: none
 
 
 @dataclass(frozen=True)
@@ -131,6 +137,10 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
         "pitch_errors_um": (dict, False, {}, None, "a table {tooth index = error in um}"),
         "profile_slope_um": (float, False, 0.0, lambda v: -200 <= v <= 200, "a number in [-200, 200] um"),
         "roll_ratio_error": (float, False, 0.0, lambda v: -0.01 <= v <= 0.01, "a number in [-0.01, 0.01]"),
+        "tip_edge_radius_mm": (float, False, 0.0, lambda v: 0 <= v <= 50, "a number in [0, 50] mm (0: a sharp "
+                               "tip edge): the radius of the rounding tangent to the flank and the tip circle"),
+        "tip_chamfer_mm": (float, False, 0.0, lambda v: 0 <= v <= 50, "a number in [0, 50] mm (0: none): the leg "
+                           "of a chamfer of the tip edge, along the flank and along the tip circle"),
     },
     "assembly": {
         "centre_distance_mm": (float, False, None, lambda v: v > 0, "a positive number (mm)"),
@@ -194,6 +204,9 @@ def _section(data: dict, name: str, schema: str, file: str | None, required: boo
 
 def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
     m = _section({name: raw}, name, "modifications", file)
+    if m["tip_edge_radius_mm"] > 0 and m["tip_chamfer_mm"] > 0:
+        raise CaseError(f"{name}.tip_chamfer_mm", m["tip_chamfer_mm"], "0 when tip_edge_radius_mm is given: a tip "
+                        "edge is rounded or chamfered, not both", file)
     errors = []
     for k, v in m["pitch_errors_um"].items():
         try:
@@ -208,7 +221,8 @@ def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
         tip_relief_exponent=m["tip_relief_exponent"], profile_crowning=m["profile_crowning_um"] * 1e-3,
         lead_crowning=m["lead_crowning_um"] * 1e-3, lead_slope=m["lead_slope_um"] * 1e-3,
         pitch_errors=tuple(sorted(errors)), profile_slope=m["profile_slope_um"] * 1e-3,
-        roll_ratio_error=m["roll_ratio_error"])
+        roll_ratio_error=m["roll_ratio_error"], tip_edge_radius=m["tip_edge_radius_mm"],
+        tip_chamfer=m["tip_chamfer_mm"])
 
 
 def _member(data: dict, name: str, file: str | None) -> Member:

@@ -23,12 +23,16 @@ import numpy as np
 from .model import PairModel
 from .tca import flank_gaps
 
-__all__ = ["clip_to_pinion_flank", "clip_to_gear_flank", "gear_tip_on_pinion", "MIN_FRACTION"]
+__all__ = ["clip_to_pinion_flank", "clip_to_gear_flank", "gear_tip_on_pinion", "bounding_edges", "MIN_FRACTION",
+           "PINION_TIP", "GEAR_TIP", "PINION_FORM", "FACE_END"]
 
 #: cells keeping less than this fraction of their length are dropped (they carry next to nothing)
 MIN_FRACTION = 1e-3
 
 _TIP_TOL = 1e-5        # mm: a gear foot point this close to the tip circle faces the tip edge or tip land
+
+#: bits of :func:`bounding_edges` (the order of :data:`ltca.cylindrical.edges.EDGES`)
+PINION_TIP, GEAR_TIP, PINION_FORM, FACE_END = 1, 2, 4, 8
 
 
 def _interval(v0, v1, m, d, lo, hi):
@@ -62,6 +66,18 @@ def clip_to_pinion_flank(s_m: np.ndarray, z_m: np.ndarray, d_s: np.ndarray, d_z:
     v0, v1 = np.full(len(s_m), -0.5), np.full(len(s_m), 0.5)
     v0, v1 = _interval(v0, v1, s_m, d_s, s_lo, s_hi)
     return _interval(v0, v1, z_m, d_z, -0.5 * b, 0.5 * b)
+
+
+def bounding_edges(s_m, z_m, d_s, d_z, v0, v1, s_lo, s_hi, b, gear_cut) -> np.ndarray:
+    """Which edges end each cell's kept part ``[v0, v1]`` (bits PINION_TIP, GEAR_TIP, PINION_FORM, FACE_END, uint8);
+    ``gear_cut``: the cells that :func:`clip_to_gear_flank` cut."""
+    tol = 1e-7
+    s = np.stack([s_m + v0 * d_s, s_m + v1 * d_s])
+    z = np.abs(np.stack([z_m + v0 * d_z, z_m + v1 * d_z]))
+    out = np.where((s >= s_hi - tol).any(axis=0), PINION_TIP, 0) | np.where(gear_cut, GEAR_TIP, 0)
+    out |= np.where((s <= s_lo + tol).any(axis=0), PINION_FORM, 0) | np.where((z >= 0.5 * b - tol).any(axis=0),
+                                                                               FACE_END, 0)
+    return out.astype(np.uint8)
 
 
 def _beyond(model: PairModel, phi1: float, tooth: int, s: np.ndarray, z: np.ndarray, cycle: int):

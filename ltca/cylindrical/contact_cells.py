@@ -17,7 +17,8 @@ import numpy as np
 
 from geometry.cylindrical import arc_length
 
-from .cell_clip import MIN_FRACTION, clip_to_gear_flank, clip_to_pinion_flank, gear_tip_on_pinion
+from .cell_clip import (MIN_FRACTION, bounding_edges, clip_to_gear_flank, clip_to_pinion_flank,
+                        gear_tip_on_pinion)
 from .flank_lattice import line_lattice
 from .loaded_model import LoadedModel
 from .tca import flank_gaps
@@ -36,6 +37,8 @@ class Strip(NamedTuple):
     open_hi: bool             # and above its last
     frac: np.ndarray          # fraction of the cell length kept after clipping (0, 1]
     shift: np.ndarray         # centre shift along the line, in cell lengths
+    bound: np.ndarray         # edges that end the kept part (bits of ltca.cylindrical.cell_clip.bounding_edges)
+    span: np.ndarray          # half the change of s over the kept part (it runs obliquely over the profile), mm
 
 
 def _runs(first: np.ndarray, count: np.ndarray) -> np.ndarray:
@@ -53,15 +56,17 @@ def _on_pinion(lat, I, J, zc, s_lo, s_hi, b):
     return x, y, sm, zm, d_s, d_z, v0, v1
 
 
-def _flank_cells(lat, zc, dz, s_lo, s_hi, b):
-    """All cells of each face slice that reach onto the pinion's flank: lattice indices (I, J)."""
-    zz = np.clip(zc[:, None] + dz * np.array([-1.0, 0.0, 1.0]), -0.5 * b, 0.5 * b)
-    _, y_lo = lat.to_plane(s_lo, zz)
-    _, y_hi = lat.to_plane(s_hi, zz)
-    ys = np.concatenate([y_lo, y_hi], axis=1)
-    first = np.floor((ys.min(axis=1) - lat.y0) / lat.ds).astype(int) - 2
-    count = np.ceil((ys.max(axis=1) - lat.y0) / lat.ds).astype(int) + 3 - first
-    return _runs(first, count), np.repeat(np.arange(len(zc)), count)
+def _scan_cells(lat, zc, s_from, s_to, half, stride):
+    """Cells to scan in each face slice: every ``stride``-th row within ``half`` rows of the contact line, the line
+    held to the part of the flank where contact can happen (``s_from`` .. ``s_to``): where the line has left it,
+    the flank's edge nearest to it (lattice indices I, J)."""
+    _, y_a = lat.to_plane(s_from, zc)
+    _, y_b = lat.to_plane(s_to, zc)
+    yc = np.clip(lat.y_line, np.minimum(y_a, y_b), np.maximum(y_a, y_b))
+    first = (np.round((yc - lat.y0) / lat.ds).astype(int) - half) // stride * stride
+    count = np.full(len(zc), (2 * half) // stride + 2)
+    I = np.repeat(first, count) + stride * (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))
+    return I, np.repeat(np.arange(len(zc)), count)
 
 
 def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict, torque: float, cycle: int = 0):
@@ -70,9 +75,10 @@ def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict
     Per tooth the cells are rectangles of the developed flank aligned with the tooth's contact line
     (:mod:`ltca.cylindrical.flank_lattice`): ``ds`` across it and one face slice along it, so the near-field
     term depends on integer lattice offsets only (tabulated). Per face slice the strip is centred on the cell
-    whose unloaded gap less the expected approach ``theta_guess`` is smallest (the slice's cells on the flank
-    are scanned, every other half-width), ``window`` nominal Hertz half-widths each side, widened by
-    ``widen[(tooth, slice)]``; slices whose smallest gap cannot close under load get no strip.
+    whose unloaded gap less the expected approach ``theta_guess`` is smallest, ``window`` nominal Hertz half-widths
+    each side, widened by ``widen[(tooth, slice)]``; slices whose smallest gap cannot close under load get no
+    strip. Contact can only happen near the tooth's contact line (where its flank meets the plane of action) or,
+    where the line has left the active flank, at the flank's edge nearest to it: the scan covers a band there.
     Each cell is clipped to the pinion's flank and to the part that faces the gear's flank
     (:mod:`ltca.cylindrical.cell_clip`): it keeps a fraction of its length and its centre moves along the line,
     so the length of contact changes continuously from one position to the next.
@@ -90,13 +96,13 @@ def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict
     u_w = float(np.tan(model.pair.alpha_w))
     s_edge2 = gear_tip_on_pinion(model)
     stride = max(1, int(fid.cells_per_b // 2))
+    half = int(np.ceil((fid.window + 1.0) * fid.cells_per_b))
     out, lattice = [], {}
     for k in lm.teeth1:
         lat = line_lattice(p1, roll + k * model.pitch_angle, u_w, ds, dz, s_lo)
         # scan: cells of each slice on the flank (every `stride`-th row), gap at the centre of their part on the
         # pinion's flank; near the gear's tip edge, of their part that faces the gear's flank
-        I, J = _flank_cells(lat, zc, dz, s_lo, s_hi, b)
-        I, J = I[I % stride == 0], J[I % stride == 0]
+        I, J = _scan_cells(lat, zc, max(s_lo, s_edge2 - 0.5), s_hi, half, stride)
         x, y, sm, zm, d_s, d_z, v0, v1 = _on_pinion(lat, I, J, zc, s_lo, s_hi, b)
         on = v1 - v0 > MIN_FRACTION
         near = on & (np.abs(sm - s_edge2) < 0.5 + 0.5 * np.abs(d_s))
@@ -123,9 +129,12 @@ def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict
         count = 2 * nw + 3
         I, J = _runs(ic - nw - 1, count), np.repeat(slices, count)
         x, y, sm, zm, d_s, d_z, v0, v1 = _on_pinion(lat, I, J, zc, s_lo, s_hi, b)
-        v0, v1 = clip_to_gear_flank(model, phi1, int(k), sm, zm, d_s, d_z, v0, v1, cycle)
+        w0, w1 = clip_to_gear_flank(model, phi1, int(k), sm, zm, d_s, d_z, v0, v1, cycle)
+        bound = bounding_edges(sm, zm, d_s, d_z, w0, w1, s_lo, s_hi, b, (w0 != v0) | (w1 != v1))
+        v0, v1 = w0, w1
         frac = np.clip(v1 - v0, 0.0, 1.0)
         shift = 0.5 * (v0 + v1)
+        span = 0.5 * np.abs(d_s) * frac
         s_c, z_c = lat.to_flank(x + shift * lat.length, y)
         keep = frac > MIN_FRACTION
         at = 0
@@ -135,7 +144,7 @@ def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict
             kept = keep[m]
             if kept.any():
                 out.append(Strip(int(k), int(j), I[m][kept], s_c[m][kept], z_c[m][kept], bool(keep[m.start - 1]),
-                                 bool(keep[m.stop]), frac[m][kept], shift[m][kept]))
+                                 bool(keep[m.stop]), frac[m][kept], shift[m][kept], bound[m][kept], span[m][kept]))
     return out, dz, ds, lattice
 
 
@@ -187,6 +196,8 @@ class ContactSystem:
     C: np.ndarray
     W1: object
     W2: object
+    bound: np.ndarray
+    span: np.ndarray
 
 
 def contact_system(lm: LoadedModel, phi1: float, strips, dz: float, ds: float, cycle: int,
@@ -221,4 +232,6 @@ def contact_system(lm: LoadedModel, phi1: float, strips, dz: float, ds: float, c
             C[np.ix_(m, m)] += near_field_block(lat[m], sl[m], ds, lattice[int(k)].length, E, nu, frac[m], shift[m])
     else:   # the coarse FE alone is (nearly) singular at sub-element spacing: a trace of regularisation
         C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
-    return ContactSystem(tooth, sl, lat, s, z, g0, h1, h2, gt, gs, gz, area, 0.5 * (C + C.T), W1, W2)
+    bound = np.concatenate([x.bound for x in strips])
+    span = np.concatenate([x.span for x in strips])
+    return ContactSystem(tooth, sl, lat, s, z, g0, h1, h2, gt, gs, gz, area, 0.5 * (C + C.T), W1, W2, bound, span)

@@ -47,6 +47,7 @@ class FlankLattice:
     radius: float = np.inf     # R0 of the developed base helix
     phi: float = 0.0           # developed angle of the line's point of tangency
     lam0: float = 0.0          # lambda of the line at z = 0
+    y_line: float = 0.0        # the contact line's place across (the line of a spur flank is y = s)
 
     def slice_x(self, zc: np.ndarray) -> np.ndarray:
         """Place along the line of the centres of face slices at axial positions ``zc``."""
@@ -99,7 +100,8 @@ def line_lattice(profile, roll: float, u_w: float, ds: float, dz: float, s_lo: f
     tau = np.tan(profile.beta) / profile.r_ref          # lead twist: dL/dz = -r_b tau along the line
     sb, cb = abs(np.sin(profile.beta_b)), np.cos(profile.beta_b)
     if sb < 1e-9:
-        return FlankLattice(ds, dz, s_lo + 0.5 * ds, rb, True)
+        L0 = rb * (u_w + roll)
+        return FlankLattice(ds, dz, s_lo + 0.5 * ds, rb, True, y_line=float(np.sign(L0) * L0 * L0 / (2 * rb)))
     hand = -np.sign(tau)
     lam0 = rb * (u_w + roll) / sb
     radius = rb / sb ** 2

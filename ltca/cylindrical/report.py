@@ -49,8 +49,22 @@ def plot_all(ds: xr.Dataset, out: Path, title: str) -> list[Path]:
 
     pattern = ds.pressure.max(("position", "pinion_tooth"))
     fig, ax = plt.subplots(figsize=(7, 4))
-    m = ax.pcolormesh(ds.flank_roll, ds.face, pattern.T, shading="nearest", cmap="inferno")
-    fig.colorbar(m, ax=ax, label="max contact pressure [MPa]")
+    # the colour scale follows the flank pressure; edge contact (often a mesh-dependent spike) saturates it and
+    # is marked
+    top = float(ds.max_flank_pressure.max()) if "max_flank_pressure" in ds else float(pattern.max())
+    m = ax.pcolormesh(ds.flank_roll, ds.face, pattern.T, shading="nearest", cmap="inferno", vmin=0.0,
+                      vmax=top or None)
+    fig.colorbar(m, ax=ax, label="max contact pressure [MPa] (scale: flank peak)",
+                 extend="max" if float(pattern.max()) > top else "neither")
+    if "edge_pattern" in ds and int(ds.edge_pattern.max()) > 0:
+        styles = (("x", "cyan", 16), ("+", "lime", 22), ("v", "white", 10), (".", "deepskyblue", 5))
+        for k, name in enumerate(ds.edge.values):
+            i, j = np.nonzero(ds.edge_pattern.values & (1 << k))
+            if len(i):
+                mk, col, size = styles[k % len(styles)]
+                ax.scatter(ds.flank_roll.values[i], ds.face.values[j], s=size, marker=mk, color=col, linewidths=0.8,
+                           label=f"edge contact: {name}")
+        ax.legend(loc="upper left", fontsize=7, framealpha=0.8)
     ax.set(xlabel="pinion involute roll angle [deg] (root -> tip)", ylabel="face width position [mm]",
            title=f"{title}: bearing pattern (pinion flank)")
     _save(fig, out / "bearing_pattern.png")

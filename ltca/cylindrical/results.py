@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from .edges import EDGES, edge_pattern, position_edges
 from .loaded import PositionResult, te_arcsec
 from .loaded_model import LoadedModel
 
@@ -54,13 +55,21 @@ def position_dataset(lm: LoadedModel, results: list[PositionResult], torque: flo
     theta0 = np.array([r.theta0 for r in results])
     fields = [pressure_on_lattice(lm, r) for r in results]
     press = np.stack([f[0] for f in fields])
+    edges = [position_edges(lm, r, torque) for r in results]
     ds = xr.Dataset(
         {
             "te_loaded": ("position", te_arcsec(lm, theta), {"units": "arcsec", "long_name": "loaded TE (gear lag)"}),
             "te_unloaded": ("position", te_arcsec(lm, theta0), {"units": "arcsec", "long_name": "unloaded TE"}),
             "pair_load": (("position", "pinion_tooth"), np.array([[r.pair_load.get(k, 0.0) for k in teeth1]
                                                                   for r in results]), {"units": "N"}),
-            "max_pressure": ("position", np.array([r.max_pressure for r in results]), {"units": "MPa"}),
+            "max_pressure": ("position", np.array([r.max_pressure for r in results]),
+                             {"units": "MPa", "long_name": "largest cell pressure, edge contact included"}),
+            "max_flank_pressure": ("position", np.array([e["flank_peak"] for e in edges]),
+                                   {"units": "MPa", "long_name": "largest flank pressure, away from edge contact"}),
+            "edge_load": (("position", "edge"), np.array([e["edge_load"] for e in edges]),
+                          {"units": "N", "long_name": "normal load within a Hertz half-width of an edge in contact"}),
+            "edge_pattern": (("flank_roll", "face"), edge_pattern(lm, results, torque),
+                             {"long_name": "edge contact on the flank lattice, bit k: edge k"}),
             "root_stress_pinion": (("position", "pinion_tooth"),
                                    np.array([[r.root1.get(k, np.nan) for k in teeth1] for r in results]),
                                    {"units": "MPa", "long_name": "max principal fillet stress"}),
@@ -75,14 +84,15 @@ def position_dataset(lm: LoadedModel, results: list[PositionResult], torque: flo
         coords={"roll": ("position", roll, {"units": "deg", "long_name": "pinion roll from the pitch point"}),
                 "pinion_tooth": teeth1, "gear_tooth": teeth2,
                 "flank_roll": ("flank_roll", fields[0][1], {"units": "deg", "long_name": "involute roll angle"}),
-                "face": ("face", fields[0][2], {"units": "mm"})},
+                "face": ("face", fields[0][2], {"units": "mm"}), "edge": list(EDGES)},
         attrs={"torque_nm": torque * 1e-3, "case": lm.model.case.name},
     )
     return ds
 
 
-def summary(lm: LoadedModel, ds: xr.Dataset, timings: dict, converged: bool) -> dict:
-    """Headline figures of one torque (the keys of summary.json)."""
+def summary(lm: LoadedModel, ds: xr.Dataset, timings: dict, converged: bool, edges: dict | None = None) -> dict:
+    """Headline figures of one torque (the keys of summary.json); ``edges``: the flank peak and edge contact keys
+    of :func:`ltca.cylindrical.edges.edge_summary`."""
     def f(x):
         return float(np.round(float(x), 6))
     return {
@@ -92,6 +102,7 @@ def summary(lm: LoadedModel, ds: xr.Dataset, timings: dict, converged: bool) -> 
         "te_loaded_ptp_arcsec": f(np.ptp(ds.te_loaded.values)),
         "te_unloaded_ptp_arcsec": f(np.ptp(ds.te_unloaded.values)),
         "te_loaded_mean_arcsec": f(ds.te_loaded.mean()),
+        **(edges or {}),
         "max_contact_pressure_mpa": f(ds.max_pressure.max()),
         "max_root_stress_mpa": {"pinion": f(np.nanmax(ds.root_stress_pinion.values)),
                                 "gear": f(np.nanmax(ds.root_stress_gear.values))},
