@@ -32,6 +32,8 @@ class ToothProfile:
     start at the fillet; internal gears: r_tip < r_form < r_root).
     s_ref : transverse tooth thickness (arc) on the reference circle, mm (internal: of the internal tooth).
     alpha_t, beta_b : rad.   undercut : the fillet cut into the involute.
+    tip_edge : :class:`geometry.tip_edge.TipEdge` or None, a rounding or chamfer of the tip edges (the outline
+    carries it; the involute ends at ``r_flank_end``).
     """
 
     xy: np.ndarray
@@ -53,6 +55,12 @@ class ToothProfile:
     alpha_t: float
     beta_b: float
     undercut: bool
+    tip_edge: object = None
+
+    @property
+    def r_flank_end(self) -> float:
+        """Radius where the involute ends at the tip: the tip circle, or where a tip-edge rounding or chamfer starts."""
+        return self.tip_edge.r_start if self.tip_edge is not None else self.r_tip
 
     def _radius(self, r):
         r = np.asarray(r, dtype=float)

@@ -21,11 +21,15 @@ __all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_cas
 DEG = math.pi / 180.0
 
 #: Fidelity presets: flank element size (x module), body element size (x module), compliance grid
-#: (profile x face per flank), contact cells across the Hertz width, face slices, near-field on/off.
+#: (profile x face per flank), contact cells across the Hertz width, face slices, near-field on/off, and the
+#: longest contact cell along a helical face (x module; more slices on a wide helical face).
 FIDELITIES: dict[str, dict[str, Any]] = {
-    "coarse": dict(h_flank=0.45, h_body=1.6, grid=(7, 6), cells_per_b=3, slices=8, near_field=True, window=1.8),
-    "default": dict(h_flank=0.3, h_body=1.3, grid=(9, 8), cells_per_b=5, slices=14, near_field=True, window=2.0),
-    "fine": dict(h_flank=0.2, h_body=1.0, grid=(12, 10), cells_per_b=8, slices=20, near_field=True, window=2.5),
+    "coarse": dict(h_flank=0.45, h_body=1.6, grid=(7, 6), cells_per_b=3, slices=8, near_field=True, window=1.8,
+                   slice_length=0.5),
+    "default": dict(h_flank=0.3, h_body=1.3, grid=(9, 8), cells_per_b=5, slices=14, near_field=True, window=2.0,
+                    slice_length=0.25),
+    "fine": dict(h_flank=0.2, h_body=1.0, grid=(12, 10), cells_per_b=8, slices=20, near_field=True, window=2.5,
+                 slice_length=0.17),
 }
 
 
@@ -43,6 +47,8 @@ class Modifications:
     roll_ratio_error: float = 0.0      # generating-chain ratio error e (-), turned into a profile slope
     profile_form: float = 0.0          # f_falpha, mm, signed parabolic form deviation (+ convex, - hollow)
     lead_form: float = 0.0             # f_fbeta, mm, signed parabolic form deviation over the face
+    tip_edge_radius: float = 0.0       # mm, rounding of the tip edges (tangent to flank and tip circle); 0: sharp
+    tip_chamfer: float = 0.0           # mm, leg of a chamfer of the tip edges (along flank and tip circle); 0: none
 
 
 @dataclass(frozen=True)
@@ -140,6 +146,10 @@ _SCHEMA: dict[str, dict[str, tuple]] = {
                             "a number in [-200, 200] um (parabolic form deviation: + convex, - hollow)"),
         "lead_form_um": (float, False, 0.0, lambda v: -200 <= v <= 200,
                          "a number in [-200, 200] um (parabolic form deviation: + convex, - hollow)"),
+        "tip_edge_radius_mm": (float, False, 0.0, lambda v: 0 <= v <= 50, "a number in [0, 50] mm (0: a sharp "
+                               "tip edge): the radius of the rounding tangent to the flank and the tip circle"),
+        "tip_chamfer_mm": (float, False, 0.0, lambda v: 0 <= v <= 50, "a number in [0, 50] mm (0: none): the leg "
+                           "of a chamfer of the tip edge, along the flank and along the tip circle"),
     },
     "assembly": {
         "centre_distance_mm": (float, False, None, lambda v: 1 <= v <= 1e5, "a number in [1, 1e5] mm"),
@@ -202,7 +212,9 @@ _DOC: dict[str, dict[str, tuple[str, str]]] = {
         "profile_slope_um": ("um", "profile slope deviation f_Halpha (+: tip relieved)"),
         "roll_ratio_error": ("-", "generating-chain ratio error e, turned into a profile slope"),
         "profile_form_um": ("um", "parabolic profile form deviation f_falpha (+ convex, - hollow)"),
-        "lead_form_um": ("um", "parabolic lead form deviation f_fbeta (+ convex, - hollow)")},
+        "lead_form_um": ("um", "parabolic lead form deviation f_fbeta (+ convex, - hollow)"),
+        "tip_edge_radius_mm": ("mm", "rounding of the tip edges, tangent to the flank and the tip circle (0: sharp)"),
+        "tip_chamfer_mm": ("mm", "leg of a chamfer of the tip edges, along the flank and the tip circle (0: none)")},
     "assembly": {"centre_distance_mm": ("mm", "centre distance a (default: the working centre distance for zero "
                                         "backlash)"),
                  "lead_misalignment_um": ("um", "misalignment over the face width in the plane of action (f_ma)"),
@@ -258,6 +270,9 @@ def _section(data: dict, name: str, schema: str, file: str | None, required: boo
 
 def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
     m = _section({name: raw}, name, "modifications", file)
+    if m["tip_edge_radius_mm"] > 0 and m["tip_chamfer_mm"] > 0:
+        raise CaseError(f"{name}.tip_chamfer_mm", m["tip_chamfer_mm"], "0 when tip_edge_radius_mm is given: a tip "
+                        "edge is rounded or chamfered, not both", file)
     pe = ToothMap(Num(-500, 500, "um")).check(m["pitch_errors_um"], f"{name}.pitch_errors_um", file)
     errors = [(tooth, v * 1e-3) for tooth, v in pe.items()]
     return Modifications(
@@ -266,7 +281,7 @@ def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
         lead_crowning=m["lead_crowning_um"] * 1e-3, lead_slope=m["lead_slope_um"] * 1e-3,
         pitch_errors=tuple(sorted(errors)), profile_slope=m["profile_slope_um"] * 1e-3,
         roll_ratio_error=m["roll_ratio_error"], profile_form=m["profile_form_um"] * 1e-3,
-        lead_form=m["lead_form_um"] * 1e-3)
+        lead_form=m["lead_form_um"] * 1e-3, tip_edge_radius=m["tip_edge_radius_mm"], tip_chamfer=m["tip_chamfer_mm"])
 
 
 def _member(data: dict, name: str, file: str | None) -> Member:

@@ -40,3 +40,16 @@ def with_case(lm, **changes):
     from ltca.cylindrical.model import build_model
     case = dataclasses.replace(lm.model.case, **changes)
     return dataclasses.replace(lm, model=build_model(case))
+
+
+@pytest.fixture(scope="session")
+def helical_lm(tmp_path_factory):
+    """Helical C14 at the default fidelity (38 face slices on its 40 mm face), both bodies' compliance (40-60 s)."""
+    from ltca.case import FIDELITIES, load_case
+    from ltca.cylindrical.loaded_model import Fidelity, prepare
+    from ltca.cylindrical.model import build_model
+    from ltca.cylindrical.run import cycle_rolls
+    case = load_case(CASES / "helical_c14.toml")
+    fid = Fidelity.from_preset(FIDELITIES["default"], case.module)
+    return prepare(build_model(case), fid, cycle_rolls(30, case.pinion.teeth), case.torques[0],
+                   cache_dir=tmp_path_factory.mktemp("helical_mesh"))

@@ -19,8 +19,10 @@ def test_cylindrical_case_runs_and_writes_results(name, tmp_path):
              cache=str(tmp_path / "cache"))
     summary = json.loads((out / "summary.json").read_text())
     for key in ("te_loaded_ptp_arcsec", "te_unloaded_ptp_arcsec", "max_contact_pressure_mpa", "max_root_stress_mpa",
-                "mesh_stiffness_mean_n_per_mm_um", "max_pairs_in_contact", "positions", "converged", "timings_s"):
+                "mesh_stiffness_mean_n_per_mm_um", "max_pairs_in_contact", "positions", "converged", "timings_s",
+                "max_flank_pressure_mpa", "max_flank_pressure_at", "edge_contact", "edge_note"):
         assert key in summary
+    assert 0 < summary["max_flank_pressure_mpa"] <= summary["max_contact_pressure_mpa"]
     from ltca.case import load_case
     assert summary["converged"] and summary["positions"] == 4 * load_case(CASES / name).cycles
     for key in ("geometry", "mesh", "compliance", "contact", "total"):
@@ -30,7 +32,8 @@ def test_cylindrical_case_runs_and_writes_results(name, tmp_path):
         assert (out / f).stat().st_size > 0, f
     import xarray as xr
     ds = xr.open_dataset(out / "results.nc")
-    assert {"te_loaded", "te_unloaded", "pair_load", "max_pressure", "root_stress_pinion", "pressure"} <= set(ds)
+    assert {"te_loaded", "te_unloaded", "pair_load", "max_pressure", "root_stress_pinion", "pressure",
+            "max_flank_pressure", "edge_load", "edge_pattern"} <= set(ds)
 
 
 def test_every_case_file_is_covered():

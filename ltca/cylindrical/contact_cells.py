@@ -1,7 +1,8 @@
 """Contact cells of one mesh position and their contact problem (gaps, levers, areas, compliance).
 
 The cells are narrow strips on the pinion's driving flank, one per face slice and tooth, centred on the
-unloaded contact line and a few Hertz half-widths wide, on a lattice of the flank that follows that line
+unloaded contact line and a few Hertz half-widths wide, on a lattice of the developed flank along that line
+(:mod:`ltca.cylindrical.flank_lattice`), clipped to the flanks that can touch (:mod:`ltca.cylindrical.cell_clip`)
 (:func:`contact_strips`). :func:`contact_system` gives their gaps from the separation field (both members'
 micro-geometry and errors included) and their compliance from the two bodies' FE grids (bilinear
 interpolation) plus the half-space near field (:func:`near_field_block`); :func:`ltca.cylindrical.loaded.solve_position`
@@ -10,39 +11,79 @@ solves the complementarity problem on it.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-from geometry.cylindrical import arc_length, flank_point_normal
+from geometry.cylindrical import arc_length
 
+from .cell_clip import (MIN_FRACTION, bounding_edges, clip_to_gear_flank, clip_to_pinion_flank,
+                        gear_tip_on_pinion)
+from .flank_lattice import line_lattice
 from .loaded_model import LoadedModel
 from .tca import flank_gaps
 
-__all__ = ["ContactSystem", "contact_strips", "contact_system", "flank_tangents", "near_field_block"]
+__all__ = ["ContactSystem", "Strip", "contact_strips", "contact_system", "near_field_block"]
 
 
-def flank_tangents(p1, s: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Flank tangents dP/ds, dP/dz (n, 3) of the pinion drive flank, by differences (the flank is exact)."""
-    eps = 1e-4
-    s, z = np.broadcast_arrays(np.atleast_1d(np.asarray(s, float)), np.atleast_1d(np.asarray(z, float)))
-    ra = np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s + eps))
-    Pa, _ = flank_point_normal(p1, +1, ra, z, tooth=0)
-    Pb, _ = flank_point_normal(p1, +1, np.sqrt(p1.r_base ** 2 + 2 * p1.r_base * (s - eps)), z, tooth=0)
-    Pz1, _ = flank_point_normal(p1, +1, ra, z + eps, tooth=0)
-    return (Pa - Pb) / (2 * eps), (Pz1 - Pa) / eps
+class Strip(NamedTuple):
+    """The cells of one tooth and face slice across the contact line (arrays of one length)."""
+    tooth: int
+    slice: int
+    lattice: np.ndarray       # lattice index across the line
+    s: np.ndarray             # centre of the kept part: flank arc length, mm
+    z: np.ndarray             # and axial position, mm
+    open_lo: bool             # the strip may be widened below its first cell
+    open_hi: bool             # and above its last
+    frac: np.ndarray          # fraction of the cell length kept after clipping (0, 1]
+    shift: np.ndarray         # centre shift along the line, in cell lengths
+    bound: np.ndarray         # edges that end the kept part (bits of ltca.cylindrical.cell_clip.bounding_edges)
+    span: np.ndarray          # half the change of s over the kept part (it runs obliquely over the profile), mm
+
+
+def _runs(first: np.ndarray, count: np.ndarray) -> np.ndarray:
+    """Consecutive integers first[k] .. first[k] + count[k] - 1, all runs concatenated."""
+    return np.repeat(first, count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+
+
+def _on_pinion(lat, I, J, zc, s_lo, s_hi, b):
+    """Cells (I, J) of a lattice clipped to the pinion's flank: centre-line ends, kept interval [v0, v1]."""
+    x, y = lat.slice_x(zc[J]), lat.y0 + I * lat.ds
+    sa, za = lat.to_flank(x - 0.5 * lat.length, y)
+    sb, zb = lat.to_flank(x + 0.5 * lat.length, y)
+    sm, zm, d_s, d_z = 0.5 * (sa + sb), 0.5 * (za + zb), sb - sa, zb - za
+    v0, v1 = clip_to_pinion_flank(sm, zm, d_s, d_z, s_lo, s_hi, b)
+    return x, y, sm, zm, d_s, d_z, v0, v1
+
+
+def _scan_cells(lat, zc, s_from, s_to, half, stride):
+    """Cells to scan in each face slice: every ``stride``-th row within ``half`` rows of the contact line, the line
+    held to the part of the flank where contact can happen (``s_from`` .. ``s_to``): where the line has left it,
+    the flank's edge nearest to it (lattice indices I, J)."""
+    _, y_a = lat.to_plane(s_from, zc)
+    _, y_b = lat.to_plane(s_to, zc)
+    yc = np.clip(lat.y_line, np.minimum(y_a, y_b), np.maximum(y_a, y_b))
+    first = (np.round((yc - lat.y0) / lat.ds).astype(int) - half) // stride * stride
+    count = np.full(len(zc), (2 * half) // stride + 2)
+    I = np.repeat(first, count) + stride * (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))
+    return I, np.repeat(np.arange(len(zc)), count)
 
 
 def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict, torque: float, cycle: int = 0):
-    """Contact strips of all teeth at a position, on a lattice of the pinion flank that follows the line.
+    """Contact strips of all teeth at a position, on a lattice of the developed pinion flank along the line.
 
-    Per tooth the unloaded contact line s = q + t z is fitted (t = 0 on a spur flank, the slope of the
-    inclined line on a helical one). The lattice has rectangular cells aligned with that line: step
-    ``dz`` along it (one slice per face step) and step ``ds`` across it, so the near-field term depends on
-    integer offsets only (tabulated), and a helical contact band is covered by cells along it instead of
-    a staircase of face-long rectangles.
+    Per tooth the cells are rectangles of the developed flank aligned with the tooth's contact line
+    (:mod:`ltca.cylindrical.flank_lattice`): ``ds`` across it and one face slice along it, so the near-field
+    term depends on integer lattice offsets only (tabulated). Per face slice the strip is centred on the cell
+    whose unloaded gap less the expected approach ``theta_guess`` is smallest, ``window`` nominal Hertz half-widths
+    each side, widened by ``widen[(tooth, slice)]``; slices whose smallest gap cannot close under load get no
+    strip. Contact can only happen near the tooth's contact line (where its flank meets the plane of action) or,
+    where the line has left the active flank, at the flank's edge nearest to it: the scan covers a band there.
+    Each cell is clipped to the pinion's flank and to the part that faces the gear's flank
+    (:mod:`ltca.cylindrical.cell_clip`): it keeps a fraction of its length and its centre moves along the line,
+    so the length of contact changes continuously from one position to the next.
 
-    Returns strips [(tooth, slice, lattice indices, s, z, open below, open above)], dz, ds and the lattice
-    of each tooth {tooth: (t, step_s, step_z)}: one step across the line in (s, z)."""
+    Returns the strips (:class:`Strip`), dz, ds and the lattice of each tooth {tooth: FlankLattice}."""
     model, fid = lm.model, lm.fid
     p1 = model.pinion
     rb = p1.r_base
@@ -50,65 +91,91 @@ def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict
     b = model.face_width
     dz = b / fid.slices
     zc = -0.5 * b + dz * (np.arange(fid.slices) + 0.5)
-    s_scan = np.linspace(s_lo, s_hi, 400)
-    S, Z = np.meshgrid(s_scan, zc, indexing="ij")
     ds = lm.half_width(torque) / fid.cells_per_b
+    roll = model.phi_pitch - phi1
+    u_w = float(np.tan(model.pair.alpha_w))
+    s_edge2 = gear_tip_on_pinion(model)
+    stride = max(1, int(fid.cells_per_b // 2))
+    half = int(np.ceil((fid.window + 1.0) * fid.cells_per_b))
     out, lattice = [], {}
     for k in lm.teeth1:
-        fg = flank_gaps(model, phi1, k, S, Z, cycle=cycle)
-        g = np.where(np.isfinite(fg.gap) & (fg.lever1 > 0), fg.gap - fg.lever1 * theta_guess, np.inf)
-        if not np.isfinite(g).any() or g.min() > 0.02 + 0.5 * abs(theta_guess) * rb:
+        lat = line_lattice(p1, roll + k * model.pitch_angle, u_w, ds, dz, s_lo)
+        # scan: cells of each slice on the flank (every `stride`-th row), gap at the centre of their part on the
+        # pinion's flank; near the gear's tip edge, of their part that faces the gear's flank
+        I, J = _scan_cells(lat, zc, max(s_lo, s_edge2 - 0.5), s_hi, half, stride)
+        x, y, sm, zm, d_s, d_z, v0, v1 = _on_pinion(lat, I, J, zc, s_lo, s_hi, b)
+        on = v1 - v0 > MIN_FRACTION
+        near = on & (np.abs(sm - s_edge2) < 0.5 + 0.5 * np.abs(d_s))
+        if near.any():
+            v0[near], v1[near] = clip_to_gear_flank(model, phi1, int(k), sm[near], zm[near], d_s[near], d_z[near],
+                                                    v0[near], v1[near], cycle)
+            on = v1 - v0 > MIN_FRACTION
+        if not on.any():
             continue
-        has = np.isfinite(g).any(axis=0)
-        s_min = s_scan[np.argmin(g, axis=0)]
-        inner = has & (s_min > s_scan[0]) & (s_min < s_scan[-1])   # the line itself, not a flank border
-        t = float(np.polyfit(zc[inner], s_min[inner], 1)[0]) if inner.sum() >= 3 else 0.0
-        t = 0.0 if abs(t) * b < 1e-9 else t
-        # one step across the line, perpendicular to it on the flank, of 3D length ds
-        Ps, Pz = flank_tangents(p1, np.median(s_min[has]), 0.0)
-        L = Pz[0] + t * Ps[0]
-        mu = float(Ps[0] @ L / (L @ L))
-        A = (1 - mu * t) * Ps[0] - mu * Pz[0]
-        step_s, step_z = ds * (1 - mu * t) / np.linalg.norm(A), -ds * mu / np.linalg.norm(A)
-        dq = step_s - t * step_z                      # the across coordinate q = s - t z per step
-        lattice[int(k)] = (t, step_s, step_z)
-        for j in range(fid.slices):
-            if not has[j]:
-                continue
-            s0 = s_lo + t * zc[j]                     # cell i of slice j: (s0, zc) + (i + 1/2) step
-            lo_i = int(np.ceil((s_lo - s0) / step_s - 0.5 - 1e-9))
-            hi_i = int(np.floor((s_hi - s0) / step_s - 0.5 + 1e-9)) + 1
-            ic = int(round((s_min[j] - t * zc[j] - s_lo) / dq - 0.5))
-            nw = int(np.ceil(fid.window * fid.cells_per_b * widen.get((k, j), 1.0)))
-            i0, i1 = max(lo_i, ic - nw), min(hi_i, ic + nw + 1)
-            if i1 <= i0:
-                continue
-            idx = np.arange(i0, i1)
-            zz = np.clip(zc[j] + (idx + 0.5) * step_z, -0.5 * b, 0.5 * b)
-            out.append((k, j, idx, s0 + (idx + 0.5) * step_s, zz, i0 > lo_i, i1 < hi_i))
+        I, J = I[on], J[on]
+        sc, zs = lat.to_flank(x[on] + 0.5 * (v0[on] + v1[on]) * lat.length, y[on])
+        fg = flank_gaps(model, phi1, k, np.maximum(sc, 0.0), zs, cycle=cycle)
+        g = np.where(np.isfinite(fg.gap) & (fg.lever1 > 0), fg.gap - fg.lever1 * theta_guess, np.inf)
+        cap = 0.02 + 0.5 * abs(theta_guess) * rb        # gaps above this cannot close under load
+        if not np.isfinite(g).any() or g.min() > cap:
+            continue
+        lattice[int(k)] = lat
+        best = np.full(fid.slices, np.inf)
+        np.minimum.at(best, J, g)
+        slices = np.flatnonzero(best <= cap)            # slices that can come into contact
+        ic = np.array([I[(J == j) & (g == best[j])][0] for j in slices], int)
+        nw = np.ceil(fid.window * fid.cells_per_b * np.array([widen.get((k, j), 1.0) for j in slices])).astype(int)
+        # the window and one cell beyond each end (is the strip open there?), clipped to both flanks
+        count = 2 * nw + 3
+        I, J = _runs(ic - nw - 1, count), np.repeat(slices, count)
+        x, y, sm, zm, d_s, d_z, v0, v1 = _on_pinion(lat, I, J, zc, s_lo, s_hi, b)
+        w0, w1 = clip_to_gear_flank(model, phi1, int(k), sm, zm, d_s, d_z, v0, v1, cycle)
+        bound = bounding_edges(sm, zm, d_s, d_z, w0, w1, s_lo, s_hi, b, (w0 != v0) | (w1 != v1))
+        v0, v1 = w0, w1
+        frac = np.clip(v1 - v0, 0.0, 1.0)
+        shift = 0.5 * (v0 + v1)
+        span = 0.5 * np.abs(d_s) * frac
+        s_c, z_c = lat.to_flank(x + shift * lat.length, y)
+        keep = frac > MIN_FRACTION
+        at = 0
+        for j, n in zip(slices, count):
+            m = slice(at + 1, at + n - 1)
+            at += n
+            kept = keep[m]
+            if kept.any():
+                out.append(Strip(int(k), int(j), I[m][kept], s_c[m][kept], z_c[m][kept], bool(keep[m.start - 1]),
+                                 bool(keep[m.stop]), frac[m][kept], shift[m][kept], bound[m][kept], span[m][kept]))
     return out, dz, ds, lattice
 
 
-def near_field_block(I, J, Vs, Vz, E, nu):
+def near_field_block(I, J, ds, length, E, nu, frac=None, shift=None):
     """Half-space surface compliance of both bodies between one tooth's cells on the lattice, (n, n), mm/N.
 
-    Cells (I, J) are lattice indices; one lattice step is the 3D vector Vs (profile) or Vz (face). The
-    bodies' FE parts have their own half-space response removed (:mod:`fem.compliance`), so this is
-    the whole local term; it is tabulated over integer lattice offsets."""
+    Cells (I, J) are lattice indices across and along the line of the developed flank; a cell is ``ds``
+    wide and ``length`` long. The bodies' FE parts have their own half-space response removed
+    (:mod:`fem.compliance`), so this is the whole local term; it is tabulated over integer lattice offsets.
+    Cells clipped at an edge keep the fraction ``frac`` of their length, centred ``shift`` cell lengths off
+    their lattice place: their rows and columns are computed directly (receiver at each centre, symmetrised)."""
     from fem.halfspace import surface_influence
-    e1 = Vs / np.linalg.norm(Vs)
-    nrm = np.cross(Vs, Vz)
-    area = np.linalg.norm(nrm)
-    e2 = np.cross(nrm / area, e1)
-    a = 0.5 * np.linalg.norm(Vs)
-    bh = area / (4 * a)
+    a, bh = 0.5 * ds, 0.5 * length
     di = np.arange(I.min() - I.max(), I.max() - I.min() + 1)
     dj = np.arange(J.min() - J.max(), J.max() - J.min() + 1)
     DI, DJ = np.meshgrid(di, dj, indexing="ij")
-    X = DI * (Vs @ e1) + DJ * (Vz @ e1)
-    Y = DI * (Vs @ e2) + DJ * (Vz @ e2)
-    table = 2.0 * surface_influence(X, Y, a, bh, E, nu)
-    return table[I[:, None] - I[None, :] - di[0], J[:, None] - J[None, :] - dj[0]]
+    table = 2.0 * surface_influence(DI * ds, DJ * length, a, bh, E, nu)
+    C = table[I[:, None] - I[None, :] - di[0], J[:, None] - J[None, :] - dj[0]]
+    if frac is None:
+        return C
+    part = np.flatnonzero((frac < 1.0 - 1e-12) | (np.abs(shift) > 1e-12))
+    if part.size:
+        x, y = I * ds, (J + shift) * length
+        # receivers: all cells, sources: the clipped ones (their own length); and the reverse
+        A = 2.0 * surface_influence(x[:, None] - x[part], y[:, None] - y[part], a, bh * frac[part], E, nu)
+        B = 2.0 * surface_influence(x[part, None] - x[None, :], y[part, None] - y[None, :], a,
+                                    bh * frac[None, :], E, nu)
+        S = 0.5 * (A + B.T)
+        C[:, part] = S
+        C[part, :] = S.T
+    return C
 
 
 @dataclass(frozen=True)
@@ -129,6 +196,8 @@ class ContactSystem:
     C: np.ndarray
     W1: object
     W2: object
+    bound: np.ndarray
+    span: np.ndarray
 
 
 def contact_system(lm: LoadedModel, phi1: float, strips, dz: float, ds: float, cycle: int,
@@ -136,28 +205,23 @@ def contact_system(lm: LoadedModel, phi1: float, strips, dz: float, ds: float, c
     """Gaps (separation field + micro-geometry), compliance (FE far field of both bodies, bilinearly
     interpolated, plus the half-space near field) and cell areas of the strips of one position."""
     model, fid = lm.model, lm.fid
-    p1 = model.pinion
-    tooth = np.concatenate([np.full(len(x), k) for k, _, x, *_ in strips])
-    sl = np.concatenate([np.full(len(x), j) for _, j, x, *_ in strips])
-    lat = np.concatenate([x[2] for x in strips])
-    s = np.concatenate([x[3] for x in strips])
-    z = np.concatenate([x[4] for x in strips])
+    tooth = np.concatenate([np.full(len(x.lattice), x.tooth) for x in strips])
+    sl = np.concatenate([np.full(len(x.lattice), x.slice) for x in strips])
+    lat = np.concatenate([x.lattice for x in strips])
+    s = np.concatenate([x.s for x in strips])
+    z = np.concatenate([x.z for x in strips])
+    frac = np.concatenate([x.frac for x in strips])
+    shift = np.concatenate([x.shift for x in strips])
     n = len(s)
     g0, h1, h2 = np.empty(n), np.empty(n), np.empty(n)
     gt, gs, gz = np.empty(n, int), np.empty(n), np.empty(n)
-    P = np.empty((n, 3))
     for k in np.unique(tooth):
         m = tooth == k
         fg = flank_gaps(model, phi1, int(k), s[m], z[m], cycle=cycle)
         g0[m], h1[m], h2[m] = fg.gap, fg.lever1, fg.lever2
-        gt[m], gs[m], gz[m], P[m] = fg.gear_tooth, fg.gear_s, fg.gear_z, fg.points
-    # cell geometry: lattice steps across (Vs) and along (Vz) the line from the local flank tangents
-    Ps, Pz = flank_tangents(p1, s, z)
-    keys = np.array(sorted(lattice))
-    t, st_s, st_z = np.array([lattice[k] for k in keys])[np.searchsorted(keys, tooth)].T
-    Vs = st_s[:, None] * Ps + st_z[:, None] * Pz
-    Vz = (Pz + t[:, None] * Ps) * dz
-    area = np.linalg.norm(np.cross(Vs, Vz), axis=1)
+        gt[m], gs[m], gz[m] = fg.gear_tooth, fg.gear_s, fg.gear_z
+    length = np.array([lattice[int(k)].length for k in tooth])
+    area = ds * length * frac
     W1 = lm.body1.weights(tooth, s, z)
     W2 = lm.body2.weights(gt, gs, gz)
     C = np.asarray(W1 @ (W1 @ lm.body1.C).T) + np.asarray(W2 @ (W2 @ lm.body2.C).T)
@@ -165,8 +229,9 @@ def contact_system(lm: LoadedModel, phi1: float, strips, dz: float, ds: float, c
         E, nu = model.case.young, model.case.poisson
         for k in np.unique(tooth):
             m = np.flatnonzero(tooth == k)
-            c = m[len(m) // 2]
-            C[np.ix_(m, m)] += near_field_block(lat[m], sl[m], Vs[c], Vz[c], E, nu)
+            C[np.ix_(m, m)] += near_field_block(lat[m], sl[m], ds, lattice[int(k)].length, E, nu, frac[m], shift[m])
     else:   # the coarse FE alone is (nearly) singular at sub-element spacing: a trace of regularisation
         C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
-    return ContactSystem(tooth, sl, lat, s, z, g0, h1, h2, gt, gs, gz, area, 0.5 * (C + C.T), W1, W2)
+    bound = np.concatenate([x.bound for x in strips])
+    span = np.concatenate([x.span for x in strips])
+    return ContactSystem(tooth, sl, lat, s, z, g0, h1, h2, gt, gs, gz, area, 0.5 * (C + C.T), W1, W2, bound, span)

@@ -52,6 +52,8 @@ class PositionResult:
     residual: float
     active: np.ndarray
     ds: float                 # profile size of the contact cells (lattice step), mm
+    bound: np.ndarray | None = None   # (n,) edges that end each cell's part (ltca.cylindrical.cell_clip bits)
+    span: np.ndarray | None = None    # (n,) half the change of s over each cell's part, mm
 
     @property
     def max_pressure(self) -> float:
@@ -86,7 +88,9 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
                                    "no tooth pair comes near contact: check the centre distance and the positions")
         sy = contact_system(lm, phi1, strips, dz, ds, cycle, lattice)
         ok = np.isfinite(sy.gap0) & (sy.lever1 > 0)
-        active0 = ok & (sy.gap0 - sy.lever1 * theta_guess < 0)
+        active0 = ok & _carried_over(warm, sy, roll, model.pitch_angle)
+        if not active0.any():
+            active0 = ok & (sy.gap0 - sy.lever1 * theta_guess < 0)
         try:
             sol = solve_contact(sy.C, np.where(ok, sy.gap0, np.inf), np.where(ok, sy.lever1, 1.0), torque,
                                 active0=active0 if active0.any() else None)
@@ -96,12 +100,12 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         F = sol.force
         theta_guess = sol.approach
         more, i0 = False, 0
-        for k, j, _, sv, _, open_lo, open_hi in strips:
-            f = F[i0:i0 + len(sv)]
-            if (open_lo and f[0] > 1e-9 * torque / rb1) or (open_hi and f[-1] > 1e-9 * torque / rb1):
-                widen[(k, j)] = widen.get((k, j), 1.0) * 1.7
+        for st in strips:
+            f = F[i0:i0 + len(st.s)]
+            if (st.open_lo and f[0] > 1e-9 * torque / rb1) or (st.open_hi and f[-1] > 1e-9 * torque / rb1):
+                widen[(st.tooth, st.slice)] = widen.get((st.tooth, st.slice), 1.0) * 1.7
                 more = True
-            i0 += len(sv)
+            i0 += len(st.s)
         if not more:
             break
     T1, T2 = float(F @ sy.lever1), float(F @ sy.lever2)
@@ -111,7 +115,22 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         sy.z, sy.area, F, F / sy.area, sy.gap0, sy.gear_tooth, sy.gear_s, sy.gear_z,
         {int(k): float(F[sy.tooth == k].sum()) for k in lm.teeth1},
         _root(lm.body1, sy.W1.T @ F), _root(lm.body2, sy.W2.T @ F), abs(T1 - torque) / torque,
-        T2 / T1 if T1 else np.nan, sol.iterations, sol.residual, sol.active, ds)
+        T2 / T1 if T1 else np.nan, sol.iterations, sol.residual, sol.active, ds, sy.bound, sy.span)
+
+
+def _cell_keys(tooth, lattice, slice_) -> np.ndarray:
+    return (np.asarray(tooth, np.int64) * 1_000_003 + lattice) * 65_536 + slice_
+
+
+def _carried_over(warm: PositionResult | None, sy, roll: float, pitch: float) -> np.ndarray:
+    """The cells that carried load at the previous position (same tooth, same place on the lattice along its line):
+    the active set to start from. A cycle boundary renumbers the teeth by one."""
+    if warm is None or not warm.active.any():
+        return np.zeros(len(sy.s), bool)
+    r_prev = warm.roll - np.round(warm.roll / pitch) * pitch
+    shift = int(np.round((r_prev - roll) / pitch))
+    keys = _cell_keys(warm.tooth[warm.active] + shift, warm.lattice[warm.active], warm.slice[warm.active])
+    return np.isin(_cell_keys(sy.tooth, sy.lattice, sy.slice), keys)
 
 
 def _root(body: BodyCompliance, f: np.ndarray) -> dict:

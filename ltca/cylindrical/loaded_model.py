@@ -4,6 +4,7 @@ and torques; the contact of each position is solved in :mod:`ltca.cylindrical.lo
 """
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass, field
 
@@ -29,6 +30,7 @@ class Fidelity:
     near_field: bool        # half-space near-field correction on/off
     depth: float            # read depth d of the FE regular part (and 2d), mm; default 0.75 h_flank
     window: float = 3.0     # strip half-width in nominal Hertz half-widths
+    slice_length: float = 0.0   # longest contact cell along a helical face, mm (0: ``slices`` alone)
 
     @staticmethod
     def from_preset(params: dict, module: float, **override) -> "Fidelity":
@@ -37,7 +39,17 @@ class Fidelity:
         h = p["h_flank"] * module
         return Fidelity(h_flank=h, h_body=p["h_body"] * module, grid=tuple(p["grid"]),
                         cells_per_b=p["cells_per_b"], slices=p["slices"], near_field=p["near_field"],
-                        depth=p.get("depth", 0.75 * h) if p["near_field"] else 0.0, window=p.get("window", 2.0))
+                        depth=p.get("depth", 0.75 * h) if p["near_field"] else 0.0, window=p.get("window", 2.0),
+                        slice_length=p.get("slice_length", 0.0) * module)
+
+    def for_pair(self, face_width: float, helical: bool) -> "Fidelity":
+        """The knobs for a pair: a helical face gets at least ``face_width / slice_length`` slices. The contact
+        line crosses the flank's tip and root edges there at a small angle (about 10 deg on helical C14), and a
+        cell as long as a slice of a wide face resolves that crossing too coarsely: the TE and the pressure near
+        the edges ripple as the crossing passes from one slice to the next (issue 11)."""
+        if not helical or self.slice_length <= 0:
+            return self
+        return dataclasses.replace(self, slices=max(self.slices, int(np.ceil(face_width / self.slice_length - 1e-9))))
 
 
 def hertz_line(w: float, R: float, E: float, nu: float) -> tuple[float, float]:
@@ -101,6 +113,7 @@ def plan_bodies(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: floa
     """Choose the teeth in mesh over ``rolls`` at ``torque`` (N mm) and the compliance spec of each body."""
     say = progress or (lambda m: None)
     case = model.case
+    fid = fid.for_pair(model.face_width, abs(model.pinion.beta) > 1e-12)
     t0 = time.perf_counter()
     p1, p2 = model.pinion, model.gear
     b = model.face_width

@@ -13,6 +13,7 @@ import numpy as np
 from geometry.cylindrical import flank_point_normal
 from geometry.involute import GearBlank, RackCutter, ToothProfile, generate_by_rack, involute, inverse_involute
 from geometry.shaper import ShaperCutter, generate_by_shaper
+from geometry.tip_edge import largest_tip_edge, with_tip_edge
 from geometry.modification import FlankModification, profile_slope_from_roll_ratio
 from geometry.pair import CylindricalPair
 
@@ -101,12 +102,29 @@ def _profile(case: CylindricalCase, member: Member, beta: float, name: str) -> T
         if member.internal:
             cutter = ShaperCutter(z0=case.shaper_teeth, x0=case.shaper_profile_shift, ha0=case.rack_addendum,
                                   rho0=case.rack_tip_radius)
-            return generate_by_shaper(blank, cutter)
-        rack = RackCutter(alpha_n=case.pressure_angle, ha=case.rack_addendum, hf=case.rack_dedendum,
-                          rho=case.rack_tip_radius)
-        return generate_by_rack(blank, rack)
+            profile = generate_by_shaper(blank, cutter)
+        else:
+            rack = RackCutter(alpha_n=case.pressure_angle, ha=case.rack_addendum, hf=case.rack_dedendum,
+                              rho=case.rack_tip_radius)
+            profile = generate_by_rack(blank, rack)
     except ValueError as exc:
         raise _generation_error(str(exc), name, member.internal) from None
+    return _tip_edge(profile, member.modifications, name)
+
+
+def _tip_edge(profile: ToothProfile, mods, name: str) -> ToothProfile:
+    """The generated profile with its tip edges rounded or chamfered as the case asks (geometry.tip_edge)."""
+    for key, kind, size in (("tip_edge_radius_mm", "radius", mods.tip_edge_radius),
+                            ("tip_chamfer_mm", "chamfer", mods.tip_chamfer)):
+        if size > 0:
+            try:
+                return with_tip_edge(profile, **{kind: size})
+            except ValueError:
+                raise CaseError(f"{name}.modifications.{key}", size, f"a {kind} that fits on the tooth: "
+                                f"(0, {largest_tip_edge(profile, kind):.3f}] mm (the {kind} starts on the involute "
+                                "above the form circle and leaves tip land)") from None
+    return profile
+
 
 
 #: what failed in the generation (a phrase of geometry.involute's message) -> the quantity and the input fields

@@ -30,7 +30,8 @@ def plot_data(ds: xr.Dataset) -> dict:
     Keys: ``te`` {torque: (roll deg, loaded TE arcsec, loaded TE um)} and ``te_unloaded`` (roll, arcsec, um);
     ``te_ptp`` (torques, ptp arcsec, ptp um); ``load_sharing`` {torque: {pinion tooth: (roll, share)}};
     ``bearing_pattern`` {torque: (flank roll deg, face mm, pressure (profile, face) MPa)} with ``pressure_range``
-    (the shared colour scale); ``root_stress`` {torque: (roll, pinion MPa, gear MPa)}; ``harmonics``
+    (the shared colour scale: the largest flank pressure, edge contact excluded) and ``edge_marks`` {torque: {edge:
+    (profile indices, face indices)}} of edge contact; ``root_stress`` {torque: (roll, pinion MPa, gear MPa)}; ``harmonics``
     {torque: (mesh orders, amplitude arcsec)}."""
     ds = _by_torque(ds)
     torques = [float(t) for t in ds.torque.values]
@@ -60,7 +61,17 @@ def plot_data(ds: xr.Dataset) -> dict:
                           d0.te_unloaded_um.values if "te_unloaded_um" in d0 else np.full(roll.shape, np.nan))
     out["te_ptp"] = (np.array(torques), np.array([np.ptp(out["te"][t][1]) for t in torques]),
                      np.array([np.ptp(out["te"][t][2]) for t in torques]))
-    out["pressure_range"] = (0.0, max(float(np.nanmax(p[2])) for p in out["bearing_pattern"].values()) or 1.0)
+    # the shared colour scale follows the flank pressure (edge contact excluded), when the run has it
+    top = (float(ds.max_flank_pressure.max()) if "max_flank_pressure" in ds else
+           max(float(np.nanmax(p[2])) for p in out["bearing_pattern"].values()))
+    out["pressure_range"] = (0.0, top or 1.0)
+    out["edge_names"] = [str(e) for e in ds.edge.values] if "edge" in ds.coords else []
+    out["edge_marks"] = {}
+    if "edge_pattern" in ds:
+        for t in torques:
+            bits = ds.edge_pattern.sel(torque=t).values.astype(int)
+            out["edge_marks"][t] = {name: np.nonzero(bits & (1 << k)) for k, name in enumerate(out["edge_names"])
+                                    if np.any(bits & (1 << k))}
     return out
 
 
@@ -137,13 +148,23 @@ def plot_all(ds: xr.Dataset, out: Path, title: str) -> list[Path]:
     vmin, vmax = data["pressure_range"]
     fig, axes = _grid(len(torques))
     m = None
+    styles = (("x", "cyan", 16), ("+", "lime", 22), ("v", "white", 10), (".", "deepskyblue", 5))
+    over = False
     for ax, t in zip(axes, torques):
         x, z, p = data["bearing_pattern"][t]
+        over |= bool(np.nanmax(p) > vmax)
         m = ax.pcolormesh(x, z, p.T, shading="nearest", cmap="inferno", vmin=vmin, vmax=vmax)
+        # edge contact (often a mesh-dependent spike) saturates the flank-pressure scale and is marked
+        for name, (i, j) in data["edge_marks"].get(t, {}).items():
+            mk, col, size = styles[list(data["edge_names"]).index(name) % len(styles)]
+            ax.scatter(x[i], z[j], s=size, marker=mk, color=col, linewidths=0.8, label=f"edge contact: {name}")
+        if data["edge_marks"].get(t):
+            ax.legend(loc="upper left", fontsize=7, framealpha=0.8)
         ax.set(xlabel="pinion involute roll angle [deg] (root -> tip)", ylabel="face width position [mm]",
                title=f"{title}: bearing pattern, {t:g} N m")
     fig.tight_layout()
-    fig.colorbar(m, ax=axes, label="max contact pressure [MPa], all torques")
+    fig.colorbar(m, ax=axes, label="contact pressure [MPa], scale: flank peak of all torques",
+                 extend="max" if over else "neither")
     fig.savefig(out / "bearing_pattern.png", dpi=110)
     plt.close(fig)
     files.append(out / "bearing_pattern.png")

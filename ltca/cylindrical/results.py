@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from .edges import EDGES, edge_pattern, position_edges
 from .loaded import PositionResult, te_arcsec
 from .loaded_model import LoadedModel
 
@@ -83,6 +84,7 @@ def position_dataset(lm: LoadedModel, results: list[PositionResult], torque: flo
     step = roll_step(results, lm.model.pitch_angle)
     fields = [pressure_on_lattice(lm, r, step) for r in results]
     press = np.stack([f[0] for f in fields])
+    edges = [position_edges(lm, r, torque) for r in results]
     um_loa = lm.model.pinion.r_base * 1e3          # pinion rotation (rad) -> um along the line of action
     P, PT, GT = ("position",), ("position", "pinion_tooth"), ("position", "gear_tooth")
     ds = xr.Dataset(
@@ -98,7 +100,13 @@ def position_dataset(lm: LoadedModel, results: list[PositionResult], torque: flo
             "pair_load": (PT, np.array([[r.pair_load.get(k, 0.0) for k in teeth1] for r in results]),
                           {"units": "N", "long_name": "normal load on each pinion tooth"}),
             "max_pressure": (P, np.array([r.max_pressure for r in results]),
-                             {"units": "MPa", "long_name": "peak contact pressure"}),
+                             {"units": "MPa", "long_name": "largest cell pressure, edge contact included"}),
+            "max_flank_pressure": (P, np.array([e["flank_peak"] for e in edges]),
+                                   {"units": "MPa", "long_name": "largest flank pressure, away from edge contact"}),
+            "edge_load": (("position", "edge"), np.array([e["edge_load"] for e in edges]),
+                          {"units": "N", "long_name": "normal load within a Hertz half-width of an edge in contact"}),
+            "edge_pattern": (("flank_roll", "face"), edge_pattern(lm, results, torque, flank_lattice(lm, step)),
+                             {"units": "1", "long_name": "edge contact on the flank lattice, bit k: edge k"}),
             "root_stress_pinion": (PT, np.array([[r.root1.get(k, np.nan) for k in teeth1] for r in results]),
                                    {"units": "MPa", "long_name": "max principal fillet stress, pinion"}),
             "root_stress_gear": (GT, np.array([[r.root2.get(k, np.nan) for k in teeth2] for r in results]),
@@ -119,14 +127,16 @@ def position_dataset(lm: LoadedModel, results: list[PositionResult], torque: flo
                 "gear_tooth": ("gear_tooth", teeth2, {"units": "1", "long_name": "gear tooth index"}),
                 "flank_roll": ("flank_roll", fields[0][1], {"units": "deg", "long_name": "pinion involute roll "
                                                             "angle (root -> tip)"}),
-                "face": ("face", fields[0][2], {"units": "mm", "long_name": "axial position from mid-face"})},
+                "face": ("face", fields[0][2], {"units": "mm", "long_name": "axial position from mid-face"}),
+                "edge": ("edge", list(EDGES), {"units": "1", "long_name": "edge of the contact (see summary edge_contact)"})},
         attrs={"torque_nm": torque * 1e-3, "case": lm.model.case.name},
     )
     return ds
 
 
-def summary(lm: LoadedModel, ds: xr.Dataset, timings: dict, converged: bool) -> dict:
-    """Headline figures of one torque (the keys of summary.json)."""
+def summary(lm: LoadedModel, ds: xr.Dataset, timings: dict, converged: bool, edges: dict | None = None) -> dict:
+    """Headline figures of one torque (the keys of summary.json); ``edges``: the flank peak and edge contact keys
+    of :func:`ltca.cylindrical.edges.edge_summary`."""
     def f(x):
         return float(np.round(float(x), 6))
     return {
@@ -136,6 +146,7 @@ def summary(lm: LoadedModel, ds: xr.Dataset, timings: dict, converged: bool) -> 
         "te_loaded_ptp_arcsec": f(np.ptp(ds.te_loaded.values)),
         "te_unloaded_ptp_arcsec": f(np.ptp(ds.te_unloaded.values)),
         "te_loaded_mean_arcsec": f(ds.te_loaded.mean()),
+        **(edges or {}),
         "max_contact_pressure_mpa": f(ds.max_pressure.max()),
         "max_root_stress_mpa": {"pinion": f(np.nanmax(ds.root_stress_pinion.values)),
                                 "gear": f(np.nanmax(ds.root_stress_gear.values))},

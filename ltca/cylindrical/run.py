@@ -13,6 +13,7 @@ from ..errors import CaseError
 from ..results import write_json
 from geometry.pair import rotation_z
 
+from .edges import edge_summary, position_edges
 from .loaded import PositionResult, solve_position, weights_of
 from .loaded_model import Fidelity, LoadedModel, prepare
 from .model import build_model
@@ -40,6 +41,7 @@ def _log_line(lm: LoadedModel, torque: float, warm: PositionResult) -> dict:
     return {"torque_nm": torque * 1e-3, "roll_deg": float(np.degrees(warm.roll)),
             "te_loaded_arcsec": warm.theta / lm.model.pair.ratio * ARCSEC_PER_RAD,
             "max_pressure_mpa": warm.max_pressure,
+            "max_flank_pressure_mpa": position_edges(lm, warm, torque)["flank_peak"],
             "pair_load_n": {str(k): v for k, v in warm.pair_load.items()},
             "root_stress_mpa": {"pinion": warm.root1, "gear": warm.root2}}
 
@@ -151,12 +153,22 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
                    "contact": t_contact, "contact_per_position": t_contact / len(rolls),
                    "total": time.perf_counter() - t_start}
         converged = all(r.residual < 1e-6 for r in results)
-        summaries.append(summary(lm, ds, timings, converged))
+        summaries.append(summary(lm, ds, timings, converged, edge_summary(lm, results, torque)))
         warnings_t = warnings + pressure_warnings(case, summaries[-1])
         summaries[-1]["warnings"] = warnings_t
         datasets.append(ds)
-        say(f"T = {torque * 1e-3:g} N m: loaded TE ptp {summaries[-1]['te_loaded_ptp_arcsec']:.2f} arcsec, "
-            f"max pressure {summaries[-1]['max_contact_pressure_mpa']:.0f} MPa ({t_contact:.1f} s)")
+        head = summaries[-1]
+        at = head.get("max_flank_pressure_at", {})
+        say(f"T = {torque * 1e-3:g} N m: loaded TE ptp {head['te_loaded_ptp_arcsec']:.2f} arcsec, "
+            f"max flank pressure {head['max_flank_pressure_mpa']:.0f} MPa at roll {at.get('roll_deg', 0):+.2f} deg, "
+            f"pinion diameter {at.get('pinion_diameter_mm', 0):.2f} mm, z {at.get('z_mm', 0):+.2f} mm "
+            f"({t_contact:.1f} s)")
+        for e in head["edge_contact"]:
+            say(f"  edge contact, {e['edge']} ({e['modelled_as']}): up to {e['max_load_n']:.0f} N at "
+                f"{e['positions']} position(s), roll {min(e['roll_deg']):+.2f} .. {max(e['roll_deg']):+.2f} deg, "
+                f"pinion diameter {e['pinion_diameter_mm'][0]:.2f} .. {e['pinion_diameter_mm'][1]:.2f} mm, "
+                f"peak {e['max_pressure_mpa']:.0f} MPa" + (" - MESH-DEPENDENT (not a flank pressure): "
+                                                           f"{e['why']}" if e["mesh_dependent"] else ""))
     from .sweep import harmonics_table, run_dataset, torque_record, torque_table
     all_ds = run_dataset(datasets, n_pos, case.cycles, case.pinion.teeth)
     records = [torque_record(all_ds, h) for h in summaries]
@@ -189,6 +201,7 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
         say(f"wrote {outdir}/summary.json, results.nc, te.png, te_ptp.png, te_harmonics.png, load_sharing.png, "
             "bearing_pattern.png, root_stress.png, pinion_loaded.vtu, gear_loaded.vtu")
     print(json.dumps({k: head[k] for k in ("torque_nm", "te_loaded_ptp_arcsec", "te_unloaded_ptp_arcsec",
+                                           "max_flank_pressure_mpa", "max_flank_pressure_at", "edge_note",
                                            "max_contact_pressure_mpa", "max_root_stress_mpa",
                                            "mesh_stiffness_mean_n_per_mm_um", "max_pairs_in_contact",
                                            "converged", "timings_s")}, indent=1))

@@ -14,6 +14,7 @@ import numpy as np
 from geometry.cylindrical import arc_length, radius_of_arc
 from geometry.cylindrical import flank_point_normal
 from geometry.modification import modification_depth
+from geometry.tip_edge import tip_edge_depth
 
 from .model import PairModel
 
@@ -57,6 +58,8 @@ def flank_gaps(model: PairModel, phi1: float, tooth: int, s: np.ndarray, z: np.n
     b = model.face_width
     g = sep.gap + modification_depth(model.mod1, r, z, tooth - cycle, p1.r_base, p1.r_form_right, p1.r_tip, b,
                                      p1.z, side)
+    if p1.tip_edge is not None:   # the pinion's rounded or chamfered tip edge (the gear's is in its outline)
+        g = g + tip_edge_depth(p1, r) * np.cos(p1.beta_b)
     r2 = np.clip(sep.gear_r, p2.r_base, None)
     rf2 = p2.r_form_right if model.gear_side > 0 else p2.r_form_left
     g = g + modification_depth(model.mod2, r2, sep.gear_z, sep.gear_tooth + model.gear_shift * cycle, p2.r_base,

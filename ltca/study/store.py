@@ -6,7 +6,7 @@ Layout under the output directory::
     points/<variant id>_T<torque>.nc   each point's position dataset (incl. the pressure lattice), written to a
                                        temporary name and renamed, so a file that exists is complete
     compliance/<geometry key>.pkl      each geometry's compliance, kept for reruns
-    study.nc                           the combined store (no pressure lattice: its flank grid differs per point)
+    study.nc                           the combined store (no pressure lattice or edge pattern: their flank grid differs per point)
 
 A rerun skips every point whose file exists. Imports ltca.study.spec only.
 """
@@ -102,7 +102,7 @@ class StudyStore:
                     with xr.open_dataset(path, engine="h5netcdf") as d:
                         d = d.load()
                     head = json.loads(d.attrs["summary"])
-                    d = d.drop_vars(["pressure", "flank_roll", "face"], errors="ignore")
+                    d = d.drop_vars(["pressure", "edge_pattern", "flank_roll", "face"], errors="ignore")
                     d = d.assign({var: ((), float(head[k]), {"units": u}) for k, (var, u) in SCALARS.items()})
                     d = d.assign(max_root_stress_pinion=((), head["max_root_stress_mpa"]["pinion"], {"units": "MPa"}),
                                  max_root_stress_gear=((), head["max_root_stress_mpa"]["gear"], {"units": "MPa"}))
