@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .section import rot2
-from .segment_gmsh import extract_mesh, polyline_distance
+from .segment_gmsh import background_size, extract_mesh, polyline_distance
 from .session import gmsh_session
 from .spec import SegmentMesh
 
@@ -248,13 +248,7 @@ def _size_field(spec: FullGearSpec, labels: dict[int, str]) -> None:
         fld.setNumber(t, "DistMin", 0.5 * h)
         fld.setNumber(t, "DistMax", 0.5 * h + (spec.h_body - h) / 0.5)
         tags.append(t)
-    for expr in spec.size_fields:
-        f = fld.add("MathEval")
-        fld.setString(f, "F", expr)
-        tags.append(f)
-    m = fld.add("Min")
-    fld.setNumbers(m, "FieldsList", tags)
-    fld.setAsBackgroundMesh(m)
+    background_size(tags, spec.size_fields)
 
 
 _OPTIONS = {"General.NumThreads": 1, "Mesh.MeshSizeFromPoints": 0, "Mesh.MeshSizeExtendFromBoundary": 0,

@@ -124,20 +124,20 @@ def _set_size_field(spec: SegmentSpec, fine: list[int]) -> None:
     background_size(thr, spec.size_fields)
 
 
-def background_size(field: int, expressions: tuple[str, ...] = ()) -> None:
-    """Make gmsh size field ``field``, or its minimum with the ``MathEval`` size ``expressions`` (in x, y, z, mm),
-    the background mesh size of the current model."""
+def background_size(field: int | list[int], expressions: tuple[str, ...] = ()) -> None:
+    """Make gmsh size field(s) ``field``, with the ``MathEval`` size ``expressions`` (in x, y, z, mm), the background
+    mesh size of the current model: their minimum where there are several."""
     import gmsh
 
     fld = gmsh.model.mesh.field
-    if not expressions:
-        fld.setAsBackgroundMesh(field)
-        return
-    tags = [field]
+    tags = [field] if isinstance(field, int) else list(field)
     for expr in expressions:
         f = fld.add("MathEval")
         fld.setString(f, "F", expr)
         tags.append(f)
+    if len(tags) == 1:
+        fld.setAsBackgroundMesh(tags[0])
+        return
     m = fld.add("Min")
     fld.setNumbers(m, "FieldsList", tags)
     fld.setAsBackgroundMesh(m)
