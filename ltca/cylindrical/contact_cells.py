@@ -56,13 +56,16 @@ def _on_pinion(lat, I, J, zc, s_lo, s_hi, b):
     return x, y, sm, zm, d_s, d_z, v0, v1
 
 
-def _scan_cells(lat, zc, s_from, s_to, half, stride):
+def _scan_cells(lat, zc, s_from, s_to, half, stride, whole: bool = False):
     """Cells to scan in each face slice: every ``stride``-th row within ``half`` rows of the contact line, the line
     held to the part of the flank where contact can happen (``s_from`` .. ``s_to``): where the line has left it,
-    the flank's edge nearest to it (lattice indices I, J)."""
+    the flank's edge nearest to it (lattice indices I, J). ``whole``: every ``stride``-th row of that part."""
     _, y_a = lat.to_plane(s_from, zc)
     _, y_b = lat.to_plane(s_to, zc)
     yc = np.clip(lat.y_line, np.minimum(y_a, y_b), np.maximum(y_a, y_b))
+    if whole:
+        yc = 0.5 * (y_a + y_b)
+        half = int(np.ceil(np.max(np.abs(y_b - y_a)) / (2 * lat.ds))) + 1
     first = (np.round((yc - lat.y0) / lat.ds).astype(int) - half) // stride * stride
     count = np.full(len(zc), (2 * half) // stride + 2)
     I = np.repeat(first, count) + stride * (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))
@@ -102,7 +105,8 @@ def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict
         lat = line_lattice(p1, roll + k * model.pitch_angle, u_w, ds, dz, s_lo)
         # scan: cells of each slice on the flank (every `stride`-th row), gap at the centre of their part on the
         # pinion's flank; near the gear's tip edge, of their part that faces the gear's flank
-        I, J = _scan_cells(lat, zc, max(s_lo, s_edge2 - 0.5), s_hi, half, stride)
+        I, J = _scan_cells(lat, zc, max(s_lo, s_edge2 - 0.5), s_hi, half, stride,
+                           whole=model.contact_search == "flank")
         x, y, sm, zm, d_s, d_z, v0, v1 = _on_pinion(lat, I, J, zc, s_lo, s_hi, b)
         on = v1 - v0 > MIN_FRACTION
         near = on & (np.abs(sm - s_edge2) < 0.5 + 0.5 * np.abs(d_s))

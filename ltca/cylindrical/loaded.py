@@ -124,8 +124,9 @@ def _cell_keys(tooth, lattice, slice_) -> np.ndarray:
 
 def _carried_over(warm: PositionResult | None, sy, roll: float, pitch: float) -> np.ndarray:
     """The cells that carried load at the previous position (same tooth, same place on the lattice along its line):
-    the active set to start from. A cycle boundary renumbers the teeth by one."""
-    if warm is None or not warm.active.any():
+    the active set to start from. A cycle boundary renumbers the teeth by one. A warm start that is only a starting
+    rotation (an object with ``theta``, no cells) carries no cells over."""
+    if not isinstance(warm, PositionResult) or not warm.active.any():
         return np.zeros(len(sy.s), bool)
     r_prev = warm.roll - np.round(warm.roll / pitch) * pitch
     shift = int(np.round((r_prev - roll) / pitch))

@@ -41,6 +41,8 @@ class PairModel:
     gear_shift: int = 0     # gear tooth index change per pinion mesh cycle (physical tooth bookkeeping)
     web1: tuple | None = None   # (r_rim, r_hub, web width, web offset) of a webbed pinion, mm; None: solid disc
     web2: tuple | None = None
+    contact_search: str = "line"  # "line": a band around each tooth's nominal contact line; "flank": the whole active
+                                  # flank (pairs whose contact lies off the nominal line, e.g. the eccentric internal pair)
 
     @property
     def pitch_angle(self) -> float:

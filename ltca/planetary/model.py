@@ -99,11 +99,11 @@ def build_satellite_model(case) -> SatelliteModel:
     b = case.face_width
     pair = EccentricPair(sat, wheel, e, b)
     pm = PairModel(case, sat, wheel, pair, FlankModification(), FlankModification(), b, 0.5 * case.bore_diameter,
-                   0.5 * case.wheel_outer_diameter, -1, 0.0, 0)
+                   0.5 * case.wheel_outer_diameter, -1, 0.0, 0, contact_search="flank")
     side = _gear_side(pm, mesh)
     if side != pm.gear_side:
         pm = PairModel(case, sat, wheel, pair, FlankModification(), FlankModification(), b, pm.r_bore1, pm.r_bore2,
-                       side, 0.0, 0)
+                       side, 0.0, 0, contact_search="flank")
     return SatelliteModel(formed, wheel, choice, mesh, pm)
 
 
