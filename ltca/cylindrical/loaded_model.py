@@ -146,6 +146,7 @@ def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, c
     :func:`plan_bodies` specs and profiles); they are used as they are and nothing is computed. ``plan``, when
     given, is the :func:`plan_bodies` of these very arguments, computed before."""
     say = progress or (lambda m: None)
+    fid = fid.for_pair(model.face_width, abs(model.pinion.beta) > 1e-12)
     plan = plan or plan_bodies(model, fid, rolls, torque, say)
     timings = {"tca": plan.t_tca}
     if bodies is None:
