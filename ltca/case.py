@@ -7,7 +7,6 @@ naming the field, its value and what is allowed; the command line turns that int
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any

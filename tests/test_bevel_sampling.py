@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.generation import generate_member, standard_gear_cut, surface_state
+from geometry.bevel.generation import generate_member, standard_gear_cut
 from geometry.bevel.sampling import axial_target, fillet_boundary, flank_at
 
 

@@ -5,7 +5,6 @@ whose outputs hold NaN/inf or lie outside physical bounds. The count per outcome
 from __future__ import annotations
 
 import contextlib
-import copy
 import io
 import json
 import math
@@ -16,7 +15,6 @@ import tomllib
 from collections import Counter
 from pathlib import Path
 
-import pytest
 
 from conftest import CASES
 from ltca.cli import main

@@ -25,7 +25,6 @@ midpoints), facets oriented outward and named ``flank_{k}_{left|right}``, ``fill
 """
 from __future__ import annotations
 
-import hashlib
 import time
 from dataclasses import dataclass
 
@@ -37,7 +36,7 @@ from .segment_gmsh import background_size, fresh_model, mesh_labelled, polyline_
 from .session import gmsh_session
 from .spec import SegmentMesh, outline_hash
 
-__all__ = ["GearBodySpec", "build_gear_body", "extrude_section"]
+__all__ = ["GearBodySpec", "build_gear_body"]
 
 _VERSION = "body-2"
 _KIND_NAMES = {0: "root", 1: "fillet", 2: "flank", 3: "tip"}

@@ -3,7 +3,6 @@ run the TCA, print a Gleason-style settings summary and write summary.json and p
 """
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np

@@ -10,7 +10,6 @@ import numpy as np
 
 from ..case import FIDELITIES, load_case
 from ..errors import CaseError
-from ..results import write_json
 from geometry.pair import rotation_z
 
 from .edges import edge_summary, position_edges

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
 
 from geometry.modification import FlankModification
 from geometry.pair import CylindricalPair
