@@ -37,7 +37,7 @@ from .readout import interpolation_matrix, stress_matrix
 from .solids import GearBodySpec, SegmentSpec, build_gear_body
 from .solver import factorize
 
-__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "body_spec", "segment_spec"]
+__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "flank_compliance", "principal_max", "body_spec", "segment_spec"]
 
 
 @dataclass(frozen=True)
@@ -96,6 +96,13 @@ class BodyCompliance:
     patch: object = field(repr=False, default=None)
     timings: dict = field(default_factory=dict)
 
+    def root_max(self, f: np.ndarray) -> dict[int, float]:
+        """Largest principal fillet stress (MPa) per loaded tooth under the grid forces ``f`` (n,), N."""
+        if self.root_stress.shape[0] == 0:
+            return {}
+        smax = principal_max(np.einsum("mkn,n->mk", self.root_stress, f))
+        return {int(k): float(smax[self.root_tooth == k].max()) for k in np.unique(self.root_tooth)}
+
     def weights(self, tooth: np.ndarray, s: np.ndarray, z: np.ndarray) -> sp.csr_matrix:
         """Bilinear interpolation weights (n_cells, n_grid) of cells at (tooth, s, z) on the grid.
 
@@ -120,6 +127,14 @@ class BodyCompliance:
                 vals.append(np.where(ok, wi * wj, 0.0))
         return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
                              shape=(n, len(loaded) * ns * nz))
+
+
+def principal_max(sig: np.ndarray) -> np.ndarray:
+    """Largest principal stress of Voigt stresses (..., 6) ordered xx, yy, zz, yz, xz, xy."""
+    T = np.stack([np.stack([sig[..., 0], sig[..., 5], sig[..., 4]], -1),
+                  np.stack([sig[..., 5], sig[..., 1], sig[..., 3]], -1),
+                  np.stack([sig[..., 4], sig[..., 3], sig[..., 2]], -1)], -2)
+    return np.linalg.eigvalsh(T)[..., -1]
 
 
 def _fillet_points(profile, side: int, count: tuple[int, int], face_width: float, internal: bool):
@@ -195,7 +210,7 @@ def body_spec(profile, spec: ComplianceSpec) -> GearBodySpec:
 
 
 def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None) -> BodyCompliance:
-    """Mesh, assemble, factorise and load one gear body; see the module docstring.
+    """Mesh, assemble, factorise and load one cylindrical gear body; see the module docstring.
 
     Parameters
     ----------
@@ -207,25 +222,11 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
         Called with a short message at each step.
     """
     say = progress or (lambda msg: None)
-    t = {}
     t0 = time.perf_counter()
     mesh = build_gear_body(body_spec(profile, spec), cache_dir=cache_dir)
-    t["mesh"] = time.perf_counter() - t0
+    t_mesh = time.perf_counter() - t0
     say(f"meshed z={profile.z}: {len(mesh.nodes)} nodes, {len(mesh.tets)} tets, {3 * len(mesh.nodes)} dofs "
-        f"({t['mesh']:.1f} s)")
-    t0 = time.perf_counter()
-    K = assemble_stiffness(mesh.nodes, mesh.tets, spec.young, spec.poisson)
-    t["assembly"] = time.perf_counter() - t0
-    fixed_name = "rim" if profile.internal else "bore"
-    fixed_nodes = np.unique(mesh.facets[fixed_name])
-    fixed = (3 * fixed_nodes[:, None] + np.arange(3)).ravel()
-    t0 = time.perf_counter()
-    fact = factorize(K, fixed)
-    t["factorisation"] = time.perf_counter() - t0
-    say(f"assembled ({t['assembly']:.1f} s) and factorised with {fact.method} ({t['factorisation']:.1f} s)")
-
-    # ---- the flank grid, its depth points and the patch loads
-    t0 = time.perf_counter()
+        f"({t_mesh:.1f} s)")
     ns, nz = spec.grid
     b = spec.face_width
     # the loaded flanks as gridded Flank records (geometry's currency): exact points and normals
@@ -236,16 +237,68 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     half_angle = np.abs(profile.flank_angle(r_grid, spec.side))
     thick = 2 * r_grid * np.sin(np.clip(half_angle, 0, np.pi / 2))
     depth = np.minimum(spec.depth, 0.15 * thick)
+    names = [f"{kind}_{k}_{'right' if spec.side > 0 else 'left'}" for k in spec.loaded
+             for kind in ("flank", "fillet")] + [f"tip_{k}" for k in spec.loaded]
+    base = _fillet_points(profile, spec.side, spec.root_points, b, profile.internal)
+    roots = [_rotate_tooth(base, k, profile.z) for k in spec.loaded]
+    R = np.concatenate(roots) if roots else np.zeros((0, 3))
+    root_tooth = np.concatenate([np.full(len(base), k) for k in spec.loaded]) if roots else np.zeros(0, int)
+    spacing = max(np.diff(s_grid).max(), np.diff(z_grid).max())
+    return flank_compliance(spec, mesh, "rim" if profile.internal else "bore", flanks, s_grid, z_grid, depth,
+                            spacing, names, R, root_tooth, {"mesh": t_mesh}, say)
+
+
+def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray, z_grid: np.ndarray,
+                     depth: np.ndarray, spacing: float, load_groups: list[str], root_points: np.ndarray,
+                     root_tooth: np.ndarray, timings: dict | None = None, progress=None) -> BodyCompliance:
+    """The compliance of any meshed gear body on its loaded flank grids: the one path for every gear type.
+
+    Parameters
+    ----------
+    spec
+        What was modelled (:class:`ComplianceSpec` or the bevel counterpart): needs ``loaded`` (teeth, in the
+        order of ``flanks``), ``depth`` (read depth d, mm; 0 without the near field), ``young``, ``poisson``.
+    mesh : SegmentMesh
+        The body (quadratic tetrahedra, named facet groups).
+    support : str
+        Facet group held fixed (all displacement components).
+    flanks : list of Flank
+        The loaded flank of each tooth of ``spec.loaded`` on the same (ns, nz) grid, body frame, normals out of
+        the material.
+    s_grid, z_grid : ndarray (ns,), (nz,)
+        The grid's coordinates (profile and face direction) for :meth:`BodyCompliance.weights`.
+    depth : ndarray (ns,)
+        Read depth d per profile row, mm.
+    spacing : float
+        Largest grid spacing on the flank, mm: the patch loads reach 0.75 of it.
+    load_groups : list of str
+        Facet groups that carry the patch loads (missing names are skipped).
+    root_points : ndarray (m, 3); root_tooth : ndarray (m,)
+        Stress read-out points in the fillets, and their teeth.
+    """
+    say = progress or (lambda msg: None)
+    t = dict(timings or {})
+    t0 = time.perf_counter()
+    K = assemble_stiffness(mesh.nodes, mesh.tets, spec.young, spec.poisson)
+    t["assembly"] = time.perf_counter() - t0
+    fixed_nodes = np.unique(mesh.facets[support])
+    fixed = (3 * fixed_nodes[:, None] + np.arange(3)).ravel()
+    t0 = time.perf_counter()
+    fact = factorize(K, fixed)
+    t["factorisation"] = time.perf_counter() - t0
+    say(f"assembled ({t['assembly']:.1f} s) and factorised with {fact.method} ({t['factorisation']:.1f} s)")
+
+    # ---- the flank grid, its depth points and the patch loads
+    t0 = time.perf_counter()
+    nz = len(z_grid)
     X = np.concatenate([f.points.reshape(-1, 3) for f in flanks])
     Nn = np.concatenate([f.normals.reshape(-1, 3) for f in flanks])
     d_pt = np.tile(np.repeat(depth, nz), len(spec.loaded))[:, None]
     near = spec.depth > 0
     # reads at d and 2d below the flank (at the flank itself without the near field)
     Y = np.concatenate([X - d_pt * Nn, X - 2 * d_pt * Nn]) if near else X
-    names = [f"{kind}_{k}_{'right' if spec.side > 0 else 'left'}" for k in spec.loaded
-             for kind in ("flank", "fillet")] + [f"tip_{k}" for k in spec.loaded]
-    tri = np.concatenate([mesh.facets[n] for n in names if n in mesh.facets])
-    ds = max(np.diff(s_grid).max(), np.diff(z_grid).max())
+    tri = np.concatenate([mesh.facets[n] for n in load_groups if n in mesh.facets])
+    ds = spacing
     quad = patch_quadrature(mesh.nodes, tri, X, 0.75 * ds)
     F = patch_loads(mesh.nodes, tri, X, -Nn, 0.75 * ds, quadrature=quad)
     Pm = interpolation_matrix(mesh.nodes, mesh.tets, Y)
@@ -253,12 +306,7 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     NN = np.concatenate([Nn, Nn]) if near else Nn
     O = sp.csr_matrix((-NN.ravel(), (np.repeat(np.arange(len(Y)), 3), np.arange(3 * len(Y)))),
                       shape=(len(Y), 3 * len(Y))) @ Pm
-    roots, root_tooth = [], []
-    base = _fillet_points(profile, spec.side, spec.root_points, b, profile.internal)
-    for k in spec.loaded:
-        roots.append(_rotate_tooth(base, k, profile.z))
-        root_tooth.append(np.full(len(base), k))
-    R = np.concatenate(roots) if roots else np.zeros((0, 3))
+    R = root_points
     S = stress_matrix(mesh.nodes, mesh.tets, spec.young, spec.poisson, R) if len(R) else sp.csr_matrix((0, K.shape[0]))
     t["setup"] = time.perf_counter() - t0
     t0 = time.perf_counter()
@@ -285,5 +333,5 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     # so that the contact matrix stays symmetric positive definite.
     C = 0.5 * (C + C.T)
     out = out[len(Y):]
-    return BodyCompliance(spec, s_grid, z_grid, C, depth, R, np.concatenate(root_tooth) if roots else
-                          np.zeros(0, int), out.reshape(len(R), 6, n), K.shape[0], mesh, fact, F, t)
+    return BodyCompliance(spec, s_grid, z_grid, C, depth, R, np.asarray(root_tooth, int), out.reshape(len(R), 6, n),
+                          K.shape[0], mesh, fact, F, t)

@@ -60,14 +60,6 @@ class PositionResult:
         return float(self.pressure.max()) if self.pressure.size else 0.0
 
 
-def _principal_max(sig: np.ndarray) -> np.ndarray:
-    """Largest principal stress of Voigt stresses (..., 6) ordered xx, yy, zz, yz, xz, xy."""
-    T = np.stack([np.stack([sig[..., 0], sig[..., 5], sig[..., 4]], -1),
-                  np.stack([sig[..., 5], sig[..., 1], sig[..., 3]], -1),
-                  np.stack([sig[..., 4], sig[..., 3], sig[..., 2]], -1)], -2)
-    return np.linalg.eigvalsh(T)[..., -1]
-
-
 def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionResult | None = None,
                    max_widen: int = 3, cycle: int = 0) -> PositionResult:
     """Loaded contact at pinion roll angle ``roll`` (rad from the pitch point) under ``torque`` (N mm).
@@ -114,7 +106,7 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         float(roll + cycle * model.pitch_angle), float(sol.approach), theta0, sy.tooth, sy.lattice, sy.slice, sy.s,
         sy.z, sy.area, F, F / sy.area, sy.gap0, sy.gear_tooth, sy.gear_s, sy.gear_z,
         {int(k): float(F[sy.tooth == k].sum()) for k in lm.teeth1},
-        _root(lm.body1, sy.W1.T @ F), _root(lm.body2, sy.W2.T @ F), abs(T1 - torque) / torque,
+        lm.body1.root_max(sy.W1.T @ F), lm.body2.root_max(sy.W2.T @ F), abs(T1 - torque) / torque,
         T2 / T1 if T1 else np.nan, sol.iterations, sol.residual, sol.active, ds, sy.bound, sy.span)
 
 
@@ -132,14 +124,6 @@ def _carried_over(warm: PositionResult | None, sy, roll: float, pitch: float) ->
     shift = int(np.round((r_prev - roll) / pitch))
     keys = _cell_keys(warm.tooth[warm.active] + shift, warm.lattice[warm.active], warm.slice[warm.active])
     return np.isin(_cell_keys(sy.tooth, sy.lattice, sy.slice), keys)
-
-
-def _root(body: BodyCompliance, f: np.ndarray) -> dict:
-    if body.root_stress.shape[0] == 0:
-        return {}
-    sig = np.einsum("mkn,n->mk", body.root_stress, f)
-    smax = _principal_max(sig)
-    return {int(k): float(smax[body.root_tooth == k].max()) for k in np.unique(body.root_tooth)}
 
 
 def weights_of(lm: LoadedModel, res: PositionResult):

@@ -1,0 +1,188 @@
+"""Loaded tooth contact of a bevel pair at one pinion angle: cells, compliance, complementarity, torque balance.
+
+The same path as the cylindrical LTCA (:mod:`ltca.cylindrical.loaded`): the cells' compliance is the two bodies'
+FE regular part on their flank grids (:meth:`fem.compliance.BodyCompliance.weights`, bilinear) plus the
+half-space near field between the cells of one pair (:func:`fem.halfspace.surface_influence`, uniform pressure on
+each rectangular cell of the tangent-plane lattice), and :func:`fem.contact.solve_contact` finds the forces and
+the gear's extra rotation under the torque balance  sum F_i v2_i = T2,  with the unloaded gaps
+g0_i = (g_i - g_min) v2_i  (g: closing gear rotation of the cell, v2: its gear lever, mm/rad).
+
+Signs: the pinion drives; its torque T1 (N mm) loads the working flank (pinion concave) for T1 > 0 as the case
+reads it, and the gear torque is T2 = T1 z2 / z1.  The loaded TE (rad, driven sense, negative = gear lags) is
+-(g_min + theta - g_ref) with g_ref the first-contact rotation at phi1 = 0: it tends to the unloaded TE
+-(g_min - g_ref) as the load vanishes.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem.contact import ContactNotConverged, solve_contact
+from fem.halfspace import surface_influence
+
+from ..errors import ConvergenceError
+from .cells import PairCells, pair_cells, pair_minimum
+from .loaded_model import LOADED, BevelLoadedModel, body_t
+
+__all__ = ["BevelPosition", "solve_position"]
+
+
+@dataclass(frozen=True)
+class BevelPosition:
+    """Loaded contact at one pinion angle (N, mm, MPa, rad).
+
+    phi1 : pinion angle;  te, te0 : loaded and unloaded TE (rad, driven sense);  theta : extra gear rotation
+    under load;  pair : (n,) tooth pair of each cell;  t, L : pinion flank coordinates;  L2, Rn2 : gear
+    axial-section coordinates of the touched point;  L1, Rn1 : pinion axial section;  xi, eta : tangent-plane
+    lattice coordinates;  area, force, pressure, gap0 : per cell;  edge : (n,) edge the cell borders ('' inside);
+    pair_share : {j: share of the gear torque};  root1, root2 : {pinion tooth / gear tooth: max principal
+    fillet stress};  ellipse : {j: (lambda1, lambda2, v2)} of the first contact;  torque_residual :
+    |sum F v2 - T2| / T2;  pinion_balance : sum F v1 / T1 (1 for conjugate levers);  iterations, residual.
+    """
+    phi1: float
+    te: float
+    te0: float
+    theta: float
+    pair: np.ndarray
+    t: np.ndarray
+    L: np.ndarray
+    L1: np.ndarray
+    Rn1: np.ndarray
+    L2: np.ndarray
+    Rn2: np.ndarray
+    xi: np.ndarray
+    eta: np.ndarray
+    area: np.ndarray
+    force: np.ndarray
+    pressure: np.ndarray
+    gap0: np.ndarray
+    edge: np.ndarray
+    pair_share: dict
+    root1: dict
+    root2: dict
+    ellipse: dict
+    torque_residual: float
+    pinion_balance: float
+    iterations: int
+    residual: float
+
+    @property
+    def max_pressure(self) -> float:
+        return float(self.pressure.max()) if self.pressure.size else 0.0
+
+    def edge_load(self) -> dict[str, float]:
+        """Force (N) carried by cells at each edge."""
+        out: dict[str, float] = {}
+        for e in np.unique(self.edge[self.force > 0]):
+            if e:
+                out[str(e)] = float(self.force[(self.edge == e)].sum())
+        return out
+
+
+def _near_field(c: PairCells, E: float, nu: float) -> np.ndarray:
+    """Half-space surface compliance of both bodies between the cells of one pair, (n, n), mm/N, from a table
+    over integer lattice offsets (uniform pressure on dxi x deta rectangles)."""
+    di = np.arange(c.ia.min() - c.ia.max(), c.ia.max() - c.ia.min() + 1)
+    dj = np.arange(c.ib.min() - c.ib.max(), c.ib.max() - c.ib.min() + 1)
+    DI, DJ = np.meshgrid(di, dj, indexing="ij")
+    table = 2.0 * surface_influence(DI * c.dxi, DJ * c.deta, 0.5 * c.dxi, 0.5 * c.deta, E, nu)
+    return table[c.ia[:, None] - c.ia[None, :] - di[0], c.ib[:, None] - c.ib[None, :] - dj[0]]
+
+
+def solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: float = 1e-9) -> BevelPosition:
+    """Loaded contact at pinion angle ``phi1`` (rad) under the pinion torque ``torque1`` (N mm, > 0).
+
+    Raises
+    ------
+    ConvergenceError
+        The contact problem did not converge (residual and advice in the message).
+    ValueError
+        No tooth pair is over the gear flank at this angle.
+    """
+    bl = lm.pair.blank
+    T2 = torque1 * bl.gear.z / bl.pinion.z
+    mins = [m for m in (pair_minimum(lm, phi1, j) for j in LOADED) if m is not None]
+    if not mins:
+        raise ValueError(f"phi1 = {phi1:.5f} rad: no tooth pair of the {lm.side} pinion flank touches the gear")
+    g_min = min(m.g for m in mins)
+    # pairs that can close within a generous bound on the deflection (5x one pair's Hertz approach plus the
+    # bodies' bending of the whole load at the first-contact point)
+    cells = []
+    b1, b2 = lm.bodies.body1, lm.bodies.body2
+    first = min(mins, key=lambda m: m.g)
+    w1, w2 = _weights(lm, np.array([first.j]), np.array([first.t]), np.array([first.L]), first)
+    bend = float(T2 / first.v2 * ((w1 @ (w1 @ b1.C).T)[0, 0] + (w2 @ (w2 @ b2.C).T)[0, 0]))
+    for m in mins:
+        from .cells import window
+        reach = 5.0 * _hertz_delta(lm, m, T2) + 3.0 * abs(bend)
+        if (m.g - g_min) * m.v2 <= reach:
+            cells.append(pair_cells(lm, phi1, m, T2))
+    cells = [c for c in cells if len(c.t)]
+    n = sum(len(c.t) for c in cells)
+    pair = np.concatenate([np.full(len(c.t), c.j) for c in cells])
+    t = np.concatenate([c.t for c in cells])
+    L = np.concatenate([c.L for c in cells])
+    g = np.concatenate([c.gaps.g for c in cells])
+    v2 = np.concatenate([c.gaps.v2 for c in cells])
+    v1 = np.concatenate([c.gaps.v1 for c in cells])
+    area = np.concatenate([np.full(len(c.t), c.dxi * c.deta) for c in cells])
+    gm = float(min(g.min(), g_min))
+    g0 = (g - gm) * v2
+    W1, W2 = _cell_weights(lm, cells)
+    C = np.asarray(W1 @ (W1 @ b1.C).T) + np.asarray(W2 @ (W2 @ b2.C).T)
+    E, nu = lm.bodies.young, lm.bodies.poisson
+    i0 = 0
+    for c in cells:
+        k = len(c.t)
+        if lm.fid.near_field:
+            C[i0:i0 + k, i0:i0 + k] += _near_field(c, E, nu)
+        i0 += k
+    if not lm.fid.near_field:
+        C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
+    try:
+        sol = solve_contact(0.5 * (C + C.T), g0, v2, T2, tol=tol)
+    except ContactNotConverged as exc:
+        raise ConvergenceError(f"bevel contact at phi1 = {phi1:.5f} rad, pinion torque {torque1 / 1e3:.4g} N m: "
+                               f"{exc}") from None
+    F = sol.force
+    shares = {int(c.j): float(F[pair == c.j] @ v2[pair == c.j] / T2) for c in cells}
+    cat = lambda f: np.concatenate([getattr(c.gaps, f) for c in cells])       # noqa: E731
+    edge = np.concatenate([c.edge for c in cells])
+    ellipse = {int(m.j): (float(m.lam[0]), float(m.lam[1]), float(m.v2)) for m in mins}
+    return BevelPosition(
+        float(phi1), float(-(gm + sol.approach - lm.g_ref)), float(-(g_min - lm.g_ref)), float(sol.approach),
+        pair, t, L, cat("L1"), cat("Rn1"), cat("L2"), cat("Rn2"), np.concatenate([c.xi for c in cells]),
+        np.concatenate([c.eta for c in cells]), area, F, F / area, g0, edge, shares,
+        b1.root_max(W1.T @ F), b2.root_max(W2.T @ F), ellipse, abs(F @ v2 - T2) / T2, float(F @ v1 / torque1),
+        sol.iterations, sol.residual)
+
+
+def _hertz_delta(lm: BevelLoadedModel, m, T2: float) -> float:
+    from fem.hertz import elliptic_hertz
+    cap = 0.75 * lm.pair.blank.face_width
+    lam = np.maximum(m.lam, [2e-3 / cap ** 2, 1e-3])
+    return elliptic_hertz(T2 / m.v2, 0.5 * lam[0], 0.5 * lam[1], lm.bodies.young, lm.bodies.poisson).delta
+
+
+def _weights(lm: BevelLoadedModel, j: np.ndarray, t: np.ndarray, L: np.ndarray, m=None):
+    """Grid weights of pinion points (t, L) of pairs j on both bodies."""
+    res = lm.gaps.gaps(0.0, t, L) if m is None else None
+    bl = lm.pair.blank
+    if res is None:
+        res = lm.gaps.gaps(m.j * lm.gaps.c1, t, L)
+    return _weights_of(lm, j, res)
+
+
+def _weights_of(lm: BevelLoadedModel, j: np.ndarray, res):
+    bl = lm.pair.blank
+    B = lm.bodies
+    t1 = body_t(bl.pinion, bl, B.off1, res.L1, res.Rn1)
+    t2 = body_t(bl.gear, bl, B.off2, res.L2, res.Rn2)
+    return B.body1.weights(j, t1, res.L1), B.body2.weights(-j, t2, res.L2)
+
+
+def _cell_weights(lm: BevelLoadedModel, cells: list[PairCells]):
+    import scipy.sparse as sp
+    W = [_weights_of(lm, np.full(len(c.t), c.j), c.gaps) for c in cells]
+    return sp.vstack([w[0] for w in W]).tocsr(), sp.vstack([w[1] for w in W]).tocsr()
