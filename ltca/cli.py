@@ -26,6 +26,12 @@ def _cmd_forming(a: argparse.Namespace) -> int:
 
 
 def _cmd_run(a: argparse.Namespace) -> int:
+    from .case import read_toml
+    if "bevel" in read_toml(a.case):
+        from .bevel.analysis import run_bevel_ltca
+        run_bevel_ltca(a.case, out=a.out, positions=a.positions, fidelity=a.fidelity, torques=a.torque,
+                       progress=not a.quiet, cache=a.cache)
+        return 0
     if _planetary(a.case):
         from .planetary.run import run_planetary
         run_planetary(a.case, out=a.out, fidelity=a.fidelity, n_positions=a.positions, progress=not a.quiet,

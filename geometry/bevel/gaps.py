@@ -97,8 +97,11 @@ class MeshGaps:
         root, face = self.P._cones(L)
         return (Rn - root) / (face - root)
 
-    def gaps(self, phi1: np.ndarray, t: np.ndarray, L: np.ndarray) -> PointGaps:
-        """Gaps of pinion points (t, L) of tooth 0 at pinion angles phi1 (rad; all broadcast together)."""
+    def gaps(self, phi1: np.ndarray, t: np.ndarray, L: np.ndarray, extend: bool = False) -> PointGaps:
+        """Gaps of pinion points (t, L) of tooth 0 at pinion angles phi1 (rad; all broadcast together).
+
+        With ``extend`` the gear surface is continued past its blank (finite-difference stencils at an edge); ``ok``
+        still says whether the point is over the gear flank."""
         phi1, t, L = np.broadcast_arrays(np.asarray(phi1, float), np.asarray(t, float), np.asarray(L, float))
         shp = t.shape
         phi1, t, L = phi1.ravel(), t.ravel(), L.ravel()
@@ -106,9 +109,9 @@ class MeshGaps:
         r1, n1, ok1 = P.surface(t, L)
         ang2 = self.phi2_0 - self.ratio * phi1
         r_h = P.to_mesh(r1, phi1)
-        g, v2, q, _, ok2 = _gap(G, r_h, ang2, self._s2)
+        g, v2, q, _, ok2 = _gap(G, r_h, ang2, self._s2, mask=not extend)
         ok = ok1 & ok2 & P.inside(t, L)
-        g = np.where(ok, g, np.inf)
+        g = np.where(ok | (extend & ok1 & np.isfinite(g)), g, np.inf)
         L1, Rn1 = to_pitch_coords(r1, self.pair.blank.pinion.pitch_angle)
         L2, Rn2 = to_pitch_coords(q, self.pair.blank.gear.pitch_angle)
         out = [g, v2, _speed(r1, n1), r1, n1, L1, Rn1, L2, Rn2, ok]

@@ -14,7 +14,7 @@ from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
-from ..validation import DesignError, Int, Num, Str, Table, check_kind, check_table
+from ..validation import DesignError, Int, List, Num, Str, Table, check_kind, check_table
 
 __all__ = ["load_bevel_case"]
 
@@ -40,8 +40,22 @@ _BEVEL = Table({
     "working": _FLANK,
     "coast": _FLANK,
 }, required=True)
+_TORQUE = Num(-1e5, 1e5, "N m", note="pinion torque: > 0 drives on the working flank (pinion concave), < 0 on "
+                                      "the coast flank (pinion convex)")
+_ASSEMBLY = Table({
+    "E_mm": Num(-5, 5, "mm", default=0.0, note="pinion offset error (hypoid offset direction)"),
+    "P_mm": Num(-5, 5, "mm", default=0.0, note="pinion axial error (+ away from the crossing point)"),
+    "G_mm": Num(-5, 5, "mm", default=0.0, note="gear axial error (+ away from the crossing point)"),
+    "sigma_deg": Num(-2, 2, "deg", default=0.0, note="shaft angle error"),
+}, required=False)
+_MATERIAL = Table({"youngs_modulus_mpa": Num(1e3, 1e6, "MPa", default=206000.0),
+                   "poisson_ratio": Num(0.0, 0.499, "", default=0.3)}, required=False)
+_ANALYSIS = Table({"positions": Int(4, 400, default=21, note="positions per mesh cycle"),
+                   "fidelity": Str(("coarse", "default", "fine"), default="default")}, required=False)
 _CASE = Table({"bevel": _BEVEL, "case": Table({"name": Str(non_empty=True, max_len=200, default=None),
-                                               "description": Str(default=""), "source": Str(default="")})})
+                                               "description": Str(default=""), "source": Str(default="")}),
+               "load": Table({"torque_nm": Num(-1e5, 1e5, "N m")}, required=False),
+               "assembly": _ASSEMBLY, "material": _MATERIAL, "analysis": _ANALYSIS})
 
 
 def load_bevel_case(case_path: str | Path) -> dict:
@@ -51,6 +65,7 @@ def load_bevel_case(case_path: str | Path) -> dict:
     data = read_toml(path)
     f = str(path)
     check_kind(data, "bevel", f)
+    torques = _torques(data, f)
     c = check_table(data, _CASE, "", f)
     b = c["bevel"]
     if b["gear_teeth"] < b["pinion_teeth"]:
@@ -72,4 +87,27 @@ def load_bevel_case(case_path: str | Path) -> dict:
         raise DesignError(f"bevel blank: {exc}", ("bevel.face_width_mm", "bevel.module_mm", "bevel.pinion_teeth",
                                                   "bevel.gear_teeth", "bevel.cutter_radius_mm"), file=f) from None
     name = c["case"]["name"] or path.stem
-    return dict(name=name, basic=basic, targets=targets, blank_offset=b.get("blank_offset_mm"))
+    asm = c.get("assembly") or {}
+    mat = c.get("material") or {}
+    an = c.get("analysis") or {}
+    return dict(name=name, basic=basic, targets=targets, blank_offset=b.get("blank_offset_mm"), torques=torques,
+                assembly=dict(E=float(asm.get("E_mm", 0.0)), P=float(asm.get("P_mm", 0.0)),
+                              G=float(asm.get("G_mm", 0.0)), d_sigma=float(np.deg2rad(asm.get("sigma_deg", 0.0)))),
+                young=float(mat.get("youngs_modulus_mpa", 206000.0)), poisson=float(mat.get("poisson_ratio", 0.3)),
+                positions=int(an.get("positions", 21)), fidelity=str(an.get("fidelity", "default")))
+
+
+def _torques(data: dict, f: str) -> tuple[float, ...]:
+    """``[load] torque_nm``: a number or a list of 1 to 20 distinct non-zero numbers in [-1e5, 1e5] N m; taken out
+    of the table before the generic check (which sees a single number)."""
+    load = data.get("load")
+    if not isinstance(load, dict) or "torque_nm" not in load:
+        return ()
+    v = load["torque_nm"]
+    out = List(_TORQUE, 1, 20).check(v, "load.torque_nm", f) if isinstance(v, list) else [_TORQUE.check(v, "load.torque_nm", f)]
+    if any(x == 0 for x in out):
+        raise CaseError("load.torque_nm", v, "non-zero torques (the sign picks the flank)", f)
+    if len(set(out)) != len(out):
+        raise CaseError("load.torque_nm", v, "distinct torques (each torque is one analysis)", f)
+    data["load"] = {**load, "torque_nm": float(out[0])}
+    return tuple(float(x) for x in out)

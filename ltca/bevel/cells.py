@@ -63,8 +63,8 @@ class PairCells:
     edge: np.ndarray
 
 
-def _evaluate(lm: BevelLoadedModel, phi: float, t: np.ndarray, L: np.ndarray):
-    return lm.gaps.gaps(phi, t, L)
+def _evaluate(lm: BevelLoadedModel, phi: float, t: np.ndarray, L: np.ndarray, extend: bool = False):
+    return lm.gaps.gaps(phi, t, L, extend)
 
 
 def pair_minimum(lm: BevelLoadedModel, phi1: float, j: int, scan: tuple[int, int] = (13, 19)) -> PairMinimum | None:
@@ -81,12 +81,17 @@ def pair_minimum(lm: BevelLoadedModel, phi1: float, j: int, scan: tuple[int, int
     x = np.array([T[i], L[i]])
     lo, hi = np.array([t0, L0]), np.array([t1, L1])
     h = np.array([(t1 - t0) / (scan[0] - 1), (L1 - L0) / (scan[1] - 1)])
+    best_x, best_g = x.copy(), float(g[i])
     for _ in range(12):
         xc = np.clip(x, lo + h, hi - h)
         P = xc + _STENCIL * h
         F = _evaluate(lm, phi, P[:, 0], P[:, 1]).g
-        if not np.all(np.isfinite(F)):
-            h = 0.5 * h
+        fin = np.isfinite(F)
+        if fin.any() and F[fin].min() < best_g:           # the best valid point seen (the minimum may sit on
+            k = int(np.argmin(np.where(fin, F, np.inf)))   # the border of the region over the gear flank)
+            best_x, best_g = P[k].copy(), float(F[k])
+        if not fin.all():
+            x, h = best_x.copy(), 0.5 * h
             continue
         gr = np.array([(F[1] - F[2]) / (2 * h[0]), (F[3] - F[4]) / (2 * h[1])])
         H = np.array([[(F[1] - 2 * F[0] + F[2]) / h[0] ** 2, (F[5] - F[6] - F[7] + F[8]) / (4 * h[0] * h[1])],
@@ -97,18 +102,23 @@ def pair_minimum(lm: BevelLoadedModel, phi1: float, j: int, scan: tuple[int, int
         step = -V @ ((V.T @ gr) / np.maximum(w, 1e-3 * max(w.max(), 1e-30)))
         step = np.clip(step, -2 * h, 2 * h)
         x_new = np.clip(x + step, lo, hi)
+        g_new = float(_evaluate(lm, phi, x_new[:1], x_new[1:]).g[0])
+        if not np.isfinite(g_new) or g_new > best_g:       # backtrack to the best point, smaller stencil
+            x, h = best_x.copy(), 0.5 * h
+            continue
         moved = np.abs(x_new - x)
-        x = x_new
+        x, best_x, best_g = x_new, x_new.copy(), g_new
         h = np.maximum(0.5 * h, np.array([1e-3, 1e-2]))
         if np.all(moved < 1e-6 * np.array([1.0, 10.0])):
             break
+    x = best_x
     # curvature of the normal gap in the tangent plane, from a small stencil around the (clipped) point
     hs = np.array([0.01, 0.15])
     xc = np.clip(x, lo + hs, hi - hs)
     P = xc + _STENCIL * hs
-    res = _evaluate(lm, phi, np.append(P[:, 0], x[0]), np.append(P[:, 1], x[1]))
+    res = _evaluate(lm, phi, np.append(P[:, 0], x[0]), np.append(P[:, 1], x[1]), extend=True)
     F, r = res.g[:9], res.r1[:9]
-    if not np.all(np.isfinite(F)) or not np.isfinite(res.g[9]):
+    if not (np.all(np.isfinite(F)) and np.isfinite(res.g[9]) and res.ok[9]):
         return None
     v2 = float(res.v2[9])
     Huu = np.array([[(F[1] - 2 * F[0] + F[2]) / hs[0] ** 2, (F[5] - F[6] - F[7] + F[8]) / (4 * hs[0] * hs[1])],

@@ -35,7 +35,7 @@ class BevelPosition:
     phi1 : pinion angle;  te, te0 : loaded and unloaded TE (rad, driven sense);  theta : extra gear rotation
     under load;  pair : (n,) tooth pair of each cell;  t, L : pinion flank coordinates;  L2, Rn2 : gear
     axial-section coordinates of the touched point;  L1, Rn1 : pinion axial section;  xi, eta : tangent-plane
-    lattice coordinates;  area, force, pressure, gap0 : per cell;  edge : (n,) edge the cell borders ('' inside);
+    lattice coordinates;  r1 : (n, 3) cell centres on pinion tooth 0, pinion body frame;  area, force, pressure, gap0 : per cell;  edge : (n,) edge the cell borders ('' inside);
     pair_share : {j: share of the gear torque};  root1, root2 : {pinion tooth / gear tooth: max principal
     fillet stress};  ellipse : {j: (lambda1, lambda2, v2)} of the first contact;  torque_residual :
     |sum F v2 - T2| / T2;  pinion_balance : sum F v1 / T1 (1 for conjugate levers);  iterations, residual.
@@ -53,6 +53,7 @@ class BevelPosition:
     Rn2: np.ndarray
     xi: np.ndarray
     eta: np.ndarray
+    r1: np.ndarray
     area: np.ndarray
     force: np.ndarray
     pressure: np.ndarray
@@ -106,30 +107,53 @@ def solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: float
     if not mins:
         raise ValueError(f"phi1 = {phi1:.5f} rad: no tooth pair of the {lm.side} pinion flank touches the gear")
     g_min = min(m.g for m in mins)
-    # pairs that can close within a generous bound on the deflection (5x one pair's Hertz approach plus the
-    # bodies' bending of the whole load at the first-contact point)
-    cells = []
+    # pairs that can close: first within a generous bound (5x one pair's Hertz approach plus the bodies'
+    # bending under the whole load at the first contact), then every pair whose first contact the loaded
+    # rotation would pass (re-solved with it: the loaded rotation decides, not the estimate)
     b1, b2 = lm.bodies.body1, lm.bodies.body2
     first = min(mins, key=lambda m: m.g)
-    w1, w2 = _weights(lm, np.array([first.j]), np.array([first.t]), np.array([first.L]), first)
+    w1, w2 = _weights_of(lm, np.array([first.j]), lm.gaps.gaps(first.j * lm.gaps.c1, np.array([first.t]),
+                                                                np.array([first.L])))
     bend = float(T2 / first.v2 * ((w1 @ (w1 @ b1.C).T)[0, 0] + (w2 @ (w2 @ b2.C).T)[0, 0]))
-    for m in mins:
-        from .cells import window
-        reach = 5.0 * _hertz_delta(lm, m, T2) + 3.0 * abs(bend)
-        if (m.g - g_min) * m.v2 <= reach:
-            cells.append(pair_cells(lm, phi1, m, T2))
-    cells = [c for c in cells if len(c.t)]
-    n = sum(len(c.t) for c in cells)
-    pair = np.concatenate([np.full(len(c.t), c.j) for c in cells])
-    t = np.concatenate([c.t for c in cells])
-    L = np.concatenate([c.L for c in cells])
-    g = np.concatenate([c.gaps.g for c in cells])
-    v2 = np.concatenate([c.gaps.v2 for c in cells])
-    v1 = np.concatenate([c.gaps.v1 for c in cells])
-    area = np.concatenate([np.full(len(c.t), c.dxi * c.deta) for c in cells])
-    gm = float(min(g.min(), g_min))
-    g0 = (g - gm) * v2
+    use = [m for m in mins if (m.g - g_min) * m.v2 <= 5.0 * _hertz_delta(lm, m, T2) + 3.0 * abs(bend)]
+    for _ in range(len(mins)):
+        cells = [c for c in (pair_cells(lm, phi1, m, T2) for m in use) if len(c.t)]
+        sy = _system(lm, cells)
+        try:
+            sol = solve_contact(sy["C"], (sy["g"] - sy["gm"]) * sy["v2"], sy["v2"], T2, tol=tol)
+        except ContactNotConverged as exc:
+            raise ConvergenceError(f"bevel contact at phi1 = {phi1:.5f} rad, pinion torque {torque1 / 1e3:.4g} N m: "
+                                   f"{exc}") from None
+        more = [m for m in mins if m not in use and m.g < sy["gm"] + sol.approach]
+        if not more:
+            break
+        use += more
+    gm, pair, v2, v1, area = sy["gm"], sy["pair"], sy["v2"], sy["v1"], sy["area"]
+    g0 = (sy["g"] - gm) * v2
+    W1, W2 = sy["W1"], sy["W2"]
+    F = sol.force
+    shares = {int(c.j): float(F[pair == c.j] @ v2[pair == c.j] / T2) for c in cells}
+    cat = lambda f: np.concatenate([getattr(c.gaps, f) for c in cells])       # noqa: E731
+    edge = np.concatenate([c.edge for c in cells])
+    ellipse = {int(m.j): (float(m.lam[0]), float(m.lam[1]), float(m.v2)) for m in mins}
+    return BevelPosition(
+        float(phi1), float(-(gm + sol.approach - lm.g_ref)), float(-(min(g_min, gm) - lm.g_ref)), float(sol.approach),
+        pair, sy["t"], sy["L"], cat("L1"), cat("Rn1"), cat("L2"), cat("Rn2"), np.concatenate([c.xi for c in cells]),
+        np.concatenate([c.eta for c in cells]), cat("r1"), area, F, F / area, g0, edge, shares,
+        b1.root_max(W1.T @ F), b2.root_max(W2.T @ F), ellipse, abs(F @ v2 - T2) / T2, float(F @ v1 / torque1),
+        sol.iterations, sol.residual)
+
+
+def _system(lm: BevelLoadedModel, cells: list[PairCells]) -> dict:
+    """Cells of the included pairs stacked: coordinates, gaps, levers, areas and the compliance (n, n)."""
+    cat = lambda f: np.concatenate([getattr(c.gaps, f) for c in cells])       # noqa: E731
+    out = dict(pair=np.concatenate([np.full(len(c.t), c.j) for c in cells]),
+               t=np.concatenate([c.t for c in cells]), L=np.concatenate([c.L for c in cells]),
+               g=cat("g"), v2=cat("v2"), v1=cat("v1"),
+               area=np.concatenate([np.full(len(c.t), c.dxi * c.deta) for c in cells]))
+    out["gm"] = float(out["g"].min())
     W1, W2 = _cell_weights(lm, cells)
+    b1, b2 = lm.bodies.body1, lm.bodies.body2
     C = np.asarray(W1 @ (W1 @ b1.C).T) + np.asarray(W2 @ (W2 @ b2.C).T)
     E, nu = lm.bodies.young, lm.bodies.poisson
     i0 = 0
@@ -138,24 +162,10 @@ def solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: float
         if lm.fid.near_field:
             C[i0:i0 + k, i0:i0 + k] += _near_field(c, E, nu)
         i0 += k
-    if not lm.fid.near_field:
-        C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
-    try:
-        sol = solve_contact(0.5 * (C + C.T), g0, v2, T2, tol=tol)
-    except ContactNotConverged as exc:
-        raise ConvergenceError(f"bevel contact at phi1 = {phi1:.5f} rad, pinion torque {torque1 / 1e3:.4g} N m: "
-                               f"{exc}") from None
-    F = sol.force
-    shares = {int(c.j): float(F[pair == c.j] @ v2[pair == c.j] / T2) for c in cells}
-    cat = lambda f: np.concatenate([getattr(c.gaps, f) for c in cells])       # noqa: E731
-    edge = np.concatenate([c.edge for c in cells])
-    ellipse = {int(m.j): (float(m.lam[0]), float(m.lam[1]), float(m.v2)) for m in mins}
-    return BevelPosition(
-        float(phi1), float(-(gm + sol.approach - lm.g_ref)), float(-(g_min - lm.g_ref)), float(sol.approach),
-        pair, t, L, cat("L1"), cat("Rn1"), cat("L2"), cat("Rn2"), np.concatenate([c.xi for c in cells]),
-        np.concatenate([c.eta for c in cells]), area, F, F / area, g0, edge, shares,
-        b1.root_max(W1.T @ F), b2.root_max(W2.T @ F), ellipse, abs(F @ v2 - T2) / T2, float(F @ v1 / torque1),
-        sol.iterations, sol.residual)
+    if not lm.fid.near_field:       # the coarse FE alone is (nearly) singular at sub-element spacing
+        C[np.diag_indices(len(C))] += 1e-6 * np.mean(np.diag(C))
+    out.update(C=0.5 * (C + C.T), W1=W1, W2=W2)
+    return out
 
 
 def _hertz_delta(lm: BevelLoadedModel, m, T2: float) -> float:
@@ -163,15 +173,6 @@ def _hertz_delta(lm: BevelLoadedModel, m, T2: float) -> float:
     cap = 0.75 * lm.pair.blank.face_width
     lam = np.maximum(m.lam, [2e-3 / cap ** 2, 1e-3])
     return elliptic_hertz(T2 / m.v2, 0.5 * lam[0], 0.5 * lam[1], lm.bodies.young, lm.bodies.poisson).delta
-
-
-def _weights(lm: BevelLoadedModel, j: np.ndarray, t: np.ndarray, L: np.ndarray, m=None):
-    """Grid weights of pinion points (t, L) of pairs j on both bodies."""
-    res = lm.gaps.gaps(0.0, t, L) if m is None else None
-    bl = lm.pair.blank
-    if res is None:
-        res = lm.gaps.gaps(m.j * lm.gaps.c1, t, L)
-    return _weights_of(lm, j, res)
 
 
 def _weights_of(lm: BevelLoadedModel, j: np.ndarray, res):
