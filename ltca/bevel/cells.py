@@ -21,7 +21,7 @@ from fem.hertz import elliptic_hertz
 
 from .loaded_model import BevelLoadedModel
 
-__all__ = ["PairMinimum", "PairCells", "pair_minimum", "pair_cells"]
+__all__ = ["PairMinimum", "PairCells", "pair_minimum", "pair_minima", "pair_cells", "cells_of", "window"]
 
 _STENCIL = np.array([[0, 0], [1, 0], [-1, 0], [0, 1], [0, -1], [1, 1], [1, -1], [-1, 1], [-1, -1]], float)
 
@@ -69,73 +69,91 @@ def _evaluate(lm: BevelLoadedModel, phi: float, t: np.ndarray, L: np.ndarray, ex
 
 def pair_minimum(lm: BevelLoadedModel, phi1: float, j: int, scan: tuple[int, int] = (13, 19)) -> PairMinimum | None:
     """First contact of pair ``j`` (pinion tooth +j) at pinion angle ``phi1``; None if it is not over the gear."""
+    return pair_minima(lm, phi1, (j,), scan)[0]
+
+
+def pair_minima(lm: BevelLoadedModel, phi1: float, js, scan: tuple[int, int] = (13, 19)) -> list[PairMinimum | None]:
+    """First contacts of the pairs ``js`` at ``phi1``, all pairs in each gap evaluation (module docstring)."""
     G = lm.gaps
-    phi = phi1 + j * G.c1
+    js = np.asarray(js, int)
+    k = len(js)
+    phi = phi1 + js * G.c1                                          # (k,)
     t0, t1 = G.t_range
     L0, L1 = G.L_range
-    T, L = np.meshgrid(np.linspace(t0, t1, scan[0]), np.linspace(L0, L1, scan[1]), indexing="ij")
-    g = _evaluate(lm, phi, T, L).g
-    if not np.isfinite(g).any():
-        return None
-    i = np.unravel_index(np.argmin(g), g.shape)
-    x = np.array([T[i], L[i]])
     lo, hi = np.array([t0, L0]), np.array([t1, L1])
-    h = np.array([(t1 - t0) / (scan[0] - 1), (L1 - L0) / (scan[1] - 1)])
-    best_x, best_g = x.copy(), float(g[i])
+    T, L = np.meshgrid(np.linspace(t0, t1, scan[0]), np.linspace(L0, L1, scan[1]), indexing="ij")
+    g = _evaluate(lm, phi[:, None, None], T[None], L[None]).g.reshape(k, -1)
+    live = np.isfinite(g).any(1)
+    i = np.argmin(np.where(np.isfinite(g), g, np.inf), 1)
+    x = np.stack([T.ravel()[i], L.ravel()[i]], 1)                    # (k, 2)
+    best_x, best_g = x.copy(), g[np.arange(k), i]
+    h = np.tile([(t1 - t0) / (scan[0] - 1), (L1 - L0) / (scan[1] - 1)], (k, 1))
+    done = ~live
+    err = np.seterr(invalid="ignore", divide="ignore")      # stencils reaching off the region over the gear: inf
     for _ in range(12):
+        if done.all():
+            break
         xc = np.clip(x, lo + h, hi - h)
-        P = xc + _STENCIL * h
-        F = _evaluate(lm, phi, P[:, 0], P[:, 1]).g
+        P = xc[:, None, :] + _STENCIL[None] * h[:, None, :]          # (k, 9, 2)
+        F = _evaluate(lm, phi[:, None], P[..., 0], P[..., 1]).g      # (k, 9)
         fin = np.isfinite(F)
-        if fin.any() and F[fin].min() < best_g:           # the best valid point seen (the minimum may sit on
-            k = int(np.argmin(np.where(fin, F, np.inf)))   # the border of the region over the gear flank)
-            best_x, best_g = P[k].copy(), float(F[k])
-        if not fin.all():
-            x, h = best_x.copy(), 0.5 * h
-            continue
-        gr = np.array([(F[1] - F[2]) / (2 * h[0]), (F[3] - F[4]) / (2 * h[1])])
-        H = np.array([[(F[1] - 2 * F[0] + F[2]) / h[0] ** 2, (F[5] - F[6] - F[7] + F[8]) / (4 * h[0] * h[1])],
-                      [0.0, (F[3] - 2 * F[0] + F[4]) / h[1] ** 2]])
-        H[1, 0] = H[0, 1]
-        gr = gr + H @ (x - xc)
+        Fm = np.where(fin, F, np.inf)
+        kb = np.argmin(Fm, 1)
+        better = Fm[np.arange(k), kb] < best_g
+        best_x[better], best_g[better] = P[np.arange(k), kb][better], Fm[np.arange(k), kb][better]
+        gr = np.stack([(F[:, 1] - F[:, 2]) / (2 * h[:, 0]), (F[:, 3] - F[:, 4]) / (2 * h[:, 1])], 1)
+        H = np.empty((k, 2, 2))
+        H[:, 0, 0] = (F[:, 1] - 2 * F[:, 0] + F[:, 2]) / h[:, 0] ** 2
+        H[:, 1, 1] = (F[:, 3] - 2 * F[:, 0] + F[:, 4]) / h[:, 1] ** 2
+        H[:, 0, 1] = H[:, 1, 0] = (F[:, 5] - F[:, 6] - F[:, 7] + F[:, 8]) / (4 * h[:, 0] * h[:, 1])
+        ok = fin.all(1) & ~done
+        H = np.where(ok[:, None, None], H, np.eye(2))
+        gr = np.where(ok[:, None], gr + np.einsum("kab,kb->ka", H, x - xc), 0.0)
         w, V = np.linalg.eigh(H)
-        step = -V @ ((V.T @ gr) / np.maximum(w, 1e-3 * max(w.max(), 1e-30)))
+        w = np.maximum(w, 1e-3 * np.maximum(w.max(1, keepdims=True), 1e-30))
+        step = -np.einsum("kab,kb->ka", V, np.einsum("kba,kb->ka", V, gr) / w)
         step = np.clip(step, -2 * h, 2 * h)
         x_new = np.clip(x + step, lo, hi)
-        g_new = float(_evaluate(lm, phi, x_new[:1], x_new[1:]).g[0])
-        if not np.isfinite(g_new) or g_new > best_g:       # backtrack to the best point, smaller stencil
-            x, h = best_x.copy(), 0.5 * h
-            continue
+        g_new = _evaluate(lm, phi, x_new[:, 0], x_new[:, 1]).g
+        accept = ok & np.isfinite(g_new) & (g_new <= best_g)
         moved = np.abs(x_new - x)
-        x, best_x, best_g = x_new, x_new.copy(), g_new
-        h = np.maximum(0.5 * h, np.array([1e-3, 1e-2]))
-        if np.all(moved < 1e-6 * np.array([1.0, 10.0])):
-            break
+        # accepted: move on; refused (or a stencil off the region over the gear): back to the best, smaller stencil
+        x = np.where(accept[:, None], x_new, best_x)
+        best_x = np.where(accept[:, None], x_new, best_x)
+        best_g = np.where(accept, g_new, best_g)
+        h = np.where(accept[:, None], np.maximum(0.5 * h, [1e-3, 1e-2]), 0.5 * h)
+        done |= accept & np.all(moved < np.array([1e-6, 1e-5]), 1)
+        done |= np.all(h < np.array([1e-6, 1e-5]), 1)
+    np.seterr(**err)
     x = best_x
     # curvature of the normal gap in the tangent plane, from a small stencil around the (clipped) point
     hs = np.array([0.01, 0.15])
     xc = np.clip(x, lo + hs, hi - hs)
-    P = xc + _STENCIL * hs
-    res = _evaluate(lm, phi, np.append(P[:, 0], x[0]), np.append(P[:, 1], x[1]), extend=True)
-    F, r = res.g[:9], res.r1[:9]
-    if not (np.all(np.isfinite(F)) and np.isfinite(res.g[9]) and res.ok[9]):
-        return None
-    v2 = float(res.v2[9])
-    Huu = np.array([[(F[1] - 2 * F[0] + F[2]) / hs[0] ** 2, (F[5] - F[6] - F[7] + F[8]) / (4 * hs[0] * hs[1])],
-                    [0.0, (F[3] - 2 * F[0] + F[4]) / hs[1] ** 2]]) * v2
-    Huu[1, 0] = Huu[0, 1]
-    ru = np.stack([(r[1] - r[2]) / (2 * hs[0]), (r[3] - r[4]) / (2 * hs[1])], 1)       # (3, 2)
-    e1 = ru[:, 1] / np.linalg.norm(ru[:, 1])                                          # along L (toe -> heel)
-    n = np.cross(ru[:, 0], ru[:, 1])
-    n /= np.linalg.norm(n)
-    e2 = np.cross(n, e1)
-    E = np.stack([e1, e2])
-    B = E @ ru
-    Bi = np.linalg.inv(B)
-    Hy = Bi.T @ Huu @ Bi
-    lam, D = np.linalg.eigh(0.5 * (Hy + Hy.T))
-    edge = bool(np.any(np.abs(x - lo) < 1e-9) or np.any(np.abs(x - hi) < 1e-9))
-    return PairMinimum(j, float(x[0]), float(x[1]), float(res.g[9]), v2, res.r1[9], E, B, lam, D, edge)
+    P = np.concatenate([xc[:, None, :] + _STENCIL[None] * hs, x[:, None, :]], 1)     # (k, 10, 2)
+    res = _evaluate(lm, phi[:, None], P[..., 0], P[..., 1], extend=True)
+    out: list[PairMinimum | None] = []
+    for q in range(k):
+        F, r = res.g[q, :9], res.r1[q, :9]
+        if not (live[q] and np.all(np.isfinite(F)) and np.isfinite(res.g[q, 9]) and res.ok[q, 9]):
+            out.append(None)
+            continue
+        v2 = float(res.v2[q, 9])
+        Huu = np.array([[(F[1] - 2 * F[0] + F[2]) / hs[0] ** 2, (F[5] - F[6] - F[7] + F[8]) / (4 * hs[0] * hs[1])],
+                        [0.0, (F[3] - 2 * F[0] + F[4]) / hs[1] ** 2]]) * v2
+        Huu[1, 0] = Huu[0, 1]
+        ru = np.stack([(r[1] - r[2]) / (2 * hs[0]), (r[3] - r[4]) / (2 * hs[1])], 1)       # (3, 2)
+        e1 = ru[:, 1] / np.linalg.norm(ru[:, 1])                                          # along L (toe -> heel)
+        n = np.cross(ru[:, 0], ru[:, 1])
+        n /= np.linalg.norm(n)
+        E = np.stack([e1, np.cross(n, e1)])
+        B = E @ ru
+        Bi = np.linalg.inv(B)
+        Hy = Bi.T @ Huu @ Bi
+        lam, D = np.linalg.eigh(0.5 * (Hy + Hy.T))
+        edge = bool(np.any(np.abs(x[q] - lo) < 1e-9) or np.any(np.abs(x[q] - hi) < 1e-9))
+        out.append(PairMinimum(int(js[q]), float(x[q, 0]), float(x[q, 1]), float(res.g[q, 9]), v2, res.r1[q, 9], E,
+                               B, lam, D, edge))
+    return out
 
 
 def window(lm: BevelLoadedModel, pm: PairMinimum, load2: float) -> tuple[float, float]:
@@ -153,45 +171,61 @@ def window(lm: BevelLoadedModel, pm: PairMinimum, load2: float) -> tuple[float, 
 
 def pair_cells(lm: BevelLoadedModel, phi1: float, pm: PairMinimum, load2: float) -> PairCells:
     """The cells of pair ``pm.j`` at ``phi1`` for the gear torque ``load2`` (module docstring)."""
+    return cells_of(lm, phi1, [pm], load2)[0]
+
+
+def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: float) -> list[PairCells]:
+    """The cells of several pairs at ``phi1``; each gap evaluation covers all pairs at once."""
+    from geometry.bevel.gaps import PointGaps
     na, nb = lm.fid.cells
-    a, b = window(lm, pm, load2)
-    dxi, deta = 2 * a / na, 2 * b / nb
-    ka, kb = (na - 1) // 2 + 1, (nb - 1) // 2 + 1
-    IA, IB = np.meshgrid(np.arange(-ka, ka + 1), np.arange(-kb, kb + 1), indexing="ij")
-    xi, eta = IA * dxi, IB * deta
-    inside = (xi / (a + 0.5 * dxi)) ** 2 + (eta / (b + 0.5 * deta)) ** 2 <= 1.0
-    ring = ~inside & ((np.abs(IA) <= ka) & (np.abs(IB) <= kb))
-    IA, IB, xi, eta = IA.ravel(), IB.ravel(), xi.ravel(), eta.ravel()
-    # tangent coordinates -> flank (t, L): y = D (xi, eta), du = B^-1 y, two corrections on the exact surface
-    Y = np.stack([xi, eta], 1) @ pm.D.T
-    Bi = np.linalg.inv(pm.B)
-    U = np.array([pm.t, pm.L]) + Y @ Bi.T
-    phi = phi1 + pm.j * lm.gaps.c1
+    lat, U, Y, phi, P0, E, Bi = [], [], [], [], [], [], []
+    for pm in pms:
+        a, b = window(lm, pm, load2)
+        dxi, deta = 2 * a / na, 2 * b / nb
+        ka, kb = (na - 1) // 2 + 1, (nb - 1) // 2 + 1
+        IA, IB = np.meshgrid(np.arange(-ka, ka + 1), np.arange(-kb, kb + 1), indexing="ij")
+        xi, eta = IA * dxi, IB * deta
+        inside = (xi / (a + 0.5 * dxi)) ** 2 + (eta / (b + 0.5 * deta)) ** 2 <= 1.0
+        y = np.stack([xi.ravel(), eta.ravel()], 1) @ pm.D.T
+        bi = np.linalg.inv(pm.B)
+        lat.append((IA, IB, xi, eta, inside, dxi, deta, ka, kb))
+        Y.append(y)
+        U.append(np.array([pm.t, pm.L]) + y @ bi.T)
+        n = len(y)
+        phi.append(np.full(n, phi1 + pm.j * lm.gaps.c1))
+        P0.append(np.broadcast_to(pm.r, (n, 3)))
+        E.append(np.broadcast_to(pm.E, (n, 2, 3)))
+        Bi.append(np.broadcast_to(bi, (n, 2, 2)))
+    U, Y, phi, P0, E, Bi = (np.concatenate(v) for v in (U, Y, phi, P0, E, Bi))
+    # tangent coordinates -> flank (t, L): du = B^-1 y, corrected twice on the exact surface
     for _ in range(2):
         res = _evaluate(lm, phi, U[:, 0], U[:, 1])
-        y_now = (res.r1 - pm.r) @ pm.E.T
-        U = U + (Y - y_now) @ Bi.T
+        y_now = np.einsum("nai,ni->na", E, res.r1 - P0)
+        U = U + np.einsum("nab,nb->na", Bi, np.where(np.isfinite(y_now), Y - y_now, 0.0))
     res = _evaluate(lm, phi, U[:, 0], U[:, 1])
-    ok = res.ok & np.isfinite(res.g)
-    keep = inside.ravel() & ok
-    # edge: a kept cell with a dropped lattice neighbour (off a flank); label by where the neighbour went
-    grid_ok = np.zeros(IA.shape, bool)
-    grid_ok[ok] = True
-    lab = _edge_labels(lm, U, res, ok)
-    key = {(int(p), int(q)): k for k, (p, q) in enumerate(zip(IA, IB))}
-    edge = np.full(len(IA), "", dtype=object)
-    for k in np.flatnonzero(keep):
+    ok_all = res.ok & np.isfinite(res.g)
+    lab_all = _edge_labels(lm, U, res, ok_all)
+    out, i0 = [], 0
+    for pm, (IA, IB, xi, eta, inside, dxi, deta, ka, kb) in zip(pms, lat):
+        n = IA.size
+        sl = slice(i0, i0 + n)
+        i0 += n
+        ok, lab = ok_all[sl].reshape(IA.shape), lab_all[sl].reshape(IA.shape)
+        keep = inside & ok
+        # edge: a kept cell with a dropped lattice neighbour (off a flank), labelled by where the neighbour went
+        edge = np.full(IA.shape, "", dtype=object)
+        pad_ok = np.pad(ok, 1, constant_values=True)
+        pad_lab = np.pad(lab, 1, constant_values="")
         for dp, dq in ((1, 0), (-1, 0), (0, 1), (0, -1)):
-            nb_ = key.get((int(IA[k]) + dp, int(IB[k]) + dq))
-            if nb_ is not None and not ok[nb_] and lab[nb_]:
-                edge[k] = lab[nb_]
-                break
-    del ring
-    sel = np.flatnonzero(keep)
-    from geometry.bevel.gaps import PointGaps
-    g = PointGaps(*[getattr(res, f)[sel] for f in PointGaps.__dataclass_fields__])
-    return PairCells(pm.j, IA[sel], IB[sel], xi[sel], eta[sel], U[sel, 0], U[sel, 1], g, dxi, deta,
-                     edge[sel].astype(str))
+            o = pad_ok[1 + dp:1 + dp + IA.shape[0], 1 + dq:1 + dq + IA.shape[1]]
+            lb = pad_lab[1 + dp:1 + dp + IA.shape[0], 1 + dq:1 + dq + IA.shape[1]]
+            m = keep & (edge == "") & ~o & (lb != "")
+            edge[m] = lb[m]
+        sel = np.flatnonzero(keep.ravel())
+        g = PointGaps(*[getattr(res, f)[sl][sel] for f in PointGaps.__dataclass_fields__])
+        out.append(PairCells(pm.j, IA.ravel()[sel], IB.ravel()[sel], xi.ravel()[sel], eta.ravel()[sel],
+                             U[sl][sel, 0], U[sl][sel, 1], g, dxi, deta, edge.ravel()[sel].astype(str)))
+    return out
 
 
 def _edge_labels(lm: BevelLoadedModel, U: np.ndarray, res, ok: np.ndarray) -> np.ndarray:

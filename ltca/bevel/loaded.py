@@ -22,7 +22,7 @@ from fem.contact import ContactNotConverged, solve_contact
 from fem.halfspace import surface_influence
 
 from ..errors import ConvergenceError
-from .cells import PairCells, pair_cells, pair_minimum
+from .cells import PairCells, cells_of, pair_minima
 from .loaded_model import LOADED, BevelLoadedModel, body_t
 
 __all__ = ["BevelPosition", "solve_position"]
@@ -103,7 +103,7 @@ def solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: float
     """
     bl = lm.pair.blank
     T2 = torque1 * bl.gear.z / bl.pinion.z
-    mins = [m for m in (pair_minimum(lm, phi1, j) for j in LOADED) if m is not None]
+    mins = [m for m in pair_minima(lm, phi1, LOADED) if m is not None]
     if not mins:
         raise ValueError(f"phi1 = {phi1:.5f} rad: no tooth pair of the {lm.side} pinion flank touches the gear")
     g_min = min(m.g for m in mins)
@@ -117,7 +117,7 @@ def solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: float
     bend = float(T2 / first.v2 * ((w1 @ (w1 @ b1.C).T)[0, 0] + (w2 @ (w2 @ b2.C).T)[0, 0]))
     use = [m for m in mins if (m.g - g_min) * m.v2 <= 5.0 * _hertz_delta(lm, m, T2) + 3.0 * abs(bend)]
     for _ in range(len(mins)):
-        cells = [c for c in (pair_cells(lm, phi1, m, T2) for m in use) if len(c.t)]
+        cells = [c for c in cells_of(lm, phi1, use, T2) if len(c.t)]
         sy = _system(lm, cells)
         try:
             sol = solve_contact(sy["C"], (sy["g"] - sy["gm"]) * sy["v2"], sy["v2"], T2, tol=tol)
