@@ -233,7 +233,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="analytic references and tables (default); calculix: the CalculiX cross-check on our body "
                         "(slow: 5-15 min per position on 2 cores, plus 30-45 min per pressure ladder); calculix-whole: "
                         "CalculiX on whole gears with every tooth and their own supports, independent of our body "
-                        "(5-10 min per position)")
+                        "(15-20 min per position on 2 cores)")
     v.add_argument("--case", default="cases/fzg_c14.toml", help="case for --reference calculix")
     v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
                    help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9)")
