@@ -155,7 +155,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     r = sub.add_parser("run", help="loaded TCA over a mesh cycle: TE, bearing pattern, load sharing, root stress",
                        description="Loaded tooth contact analysis of a case over one mesh cycle. Writes "
-                                   "summary.json, results.nc, PNG plots and a VTU into --out.")
+                                   "summary.json, results.nc, PNG plots, report.html (one self-contained page), "
+                                   "a VTU and the ParaView series paraview.pvd into --out.")
     r.add_argument("case", help="case file (.toml)")
     r.add_argument("--out", default="out", help="output directory (default: out)")
     r.add_argument("--fidelity", choices=["coarse", "default", "fine"], help="override the case's fidelity")

@@ -72,8 +72,10 @@ def test_derived_geometry(fzg_model):
     pair = {name: v for name, v, _ in g["pair"]}
     assert pair["transverse base pitch p_bt"] == pytest.approx(4.5 * np.pi * np.cos(np.radians(20)), rel=1e-9)
     a = active_profile(fzg_model)
-    assert a["pinion"]["sap"] == pytest.approx(68.246, abs=0.02) and a["gear"]["sap"] == pytest.approx(103.999, abs=0.02)
-    assert a["pinion"]["eap"] == pytest.approx(82.456, abs=1e-6) and a["gear"]["eap"] == pytest.approx(118.364, abs=1e-6)
+    assert a["pinion"]["sap"] == pytest.approx(68.246, abs=0.02)
+    assert a["gear"]["sap"] == pytest.approx(103.999, abs=0.02)
+    assert a["pinion"]["eap"] == pytest.approx(82.456, abs=1e-6)
+    assert a["gear"]["eap"] == pytest.approx(118.364, abs=1e-6)
     assert a["pinion"]["form"] < a["pinion"]["sap"] < a["pinion"]["eap"] <= a["pinion"]["tip"]
 
 

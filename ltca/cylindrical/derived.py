@@ -23,8 +23,8 @@ def _rho_tip(p) -> float:
 def active_profile(model: PairModel) -> dict:
     """Start and end of the active profile (SAP, EAP) and the form diameter of each member, mm.
 
-    Returns ``{"pinion": {"sap", "eap", "form", "tip_form", "tip", "root", "base"}, "gear": {...}}`` (diameters, mm). A gear
-    tip that reaches below the pinion base circle (interference) puts the pinion SAP at its base circle."""
+    Returns ``{"pinion": {"sap", "eap", "form", "tip_form", "tip", "root", "base"}, "gear": {...}}`` (diameters,
+    mm). A gear tip that reaches below the pinion base circle (interference) puts the pinion SAP at its base circle."""
     p1, p2, pair = model.pinion, model.gear, model.pair
     loa = float(pair.a * np.sin(pair.alpha_w))           # T1 T2
     rho_tip1, rho_tip2 = _rho_tip(p1), _rho_tip(p2)
@@ -37,7 +37,8 @@ def active_profile(model: PairModel) -> dict:
     form2 = model.gear.r_form_right if model.gear_side > 0 else model.gear.r_form_left
     return {
         "pinion": {"sap": d(p1.r_base, start1), "eap": d(p1.r_base, rho_tip1), "form": 2 * float(p1.r_form_right),
-                   "tip_form": 2 * float(p1.r_flank_end), "tip": 2 * float(p1.r_tip), "root": 2 * float(p1.r_root), "base": 2 * float(p1.r_base)},
+                   "tip_form": 2 * float(p1.r_flank_end), "tip": 2 * float(p1.r_tip), "root": 2 * float(p1.r_root),
+                   "base": 2 * float(p1.r_base)},
         "gear": {"sap": d(p2.r_base, max(rho2_at_tip1, 0.0)), "eap": d(p2.r_base, rho_tip2), "form": 2 * float(form2),
                  "tip_form": 2 * float(p2.r_flank_end),
                  "tip": 2 * float(p2.r_tip), "root": 2 * float(p2.r_root), "base": 2 * float(p2.r_base)},

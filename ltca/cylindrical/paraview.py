@@ -88,9 +88,10 @@ class _Body:
         u = u.reshape(-1, 3)[self.nodes]
         R, t = frame[:3, :3], frame[:3, 3]
         pts = self.body.mesh.nodes[self.nodes] @ R.T + t
+        mag = 1e3 * np.linalg.norm(u, axis=1)
         mesh = meshio.Mesh(pts.astype(np.float32), [("tetra10", self.tets)],
                            point_data={"displacement_mm": (u @ R.T).astype(np.float32),
-                                       "displacement_magnitude_um": (1e3 * np.linalg.norm(u, axis=1)).astype(np.float32)},
+                                       "displacement_magnitude_um": mag.astype(np.float32)},
                            cell_data={"von_mises_mpa": [vm.astype(np.float32)],
                                       "principal_stress_mpa": [principal.astype(np.float32)]})
         meshio.write(str(path), mesh, file_format="vtu", binary=True)
@@ -148,7 +149,8 @@ def write_series(out: Path, lm: LoadedModel, results: list[PositionResult], torq
         meshio.write(str(out / f), meshio.Mesh((pts @ R.T + t).astype(np.float32), [("quad", quads.astype(np.int32))],
                                               cell_data={"contact_pressure_mpa": [p]}), file_format="vtu", binary=True)
         names.append(f)
-        rows += [f'    <DataSet timestep="{rolls[k]:.6g}" part="{i}" name={quoteattr(n.split("_")[1])} file={quoteattr(n)}/>'
+        rows += [f'    <DataSet timestep="{rolls[k]:.6g}" part="{i}" name={quoteattr(n.split("_")[1])} '
+                 f'file={quoteattr(n)}/>'
                  for i, n in enumerate(names)]
     text = ('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
             f'  <!-- {model.case.name}, {torque * 1e-3:g} N m; timestep = pinion roll from the pitch point, deg -->\n'

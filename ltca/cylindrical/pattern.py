@@ -54,7 +54,8 @@ def striping_index(pattern: np.ndarray, floor: float = 0.1) -> float:
 
 def plot_pattern_diameter(ds: xr.Dataset, active: dict, r_base: float, path: Path, title: str) -> Path:
     """Bearing pattern per torque against the pinion diameter (shared colour scale), with the pinion's root form
-    diameter d_Ff, SAP, EAP and tip form diameter d_Fa (the involute's end; d_a without a tip edge) marked; ``active`` is
+    diameter d_Ff, SAP, EAP and tip form diameter d_Fa (the involute's end; d_a without a tip edge) marked;
+    ``active`` is
     :func:`ltca.cylindrical.derived.active_profile`. Writes ``path`` and returns it."""
     data = plot_data(ds)
     torques = data["torques"]
