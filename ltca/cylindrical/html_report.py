@@ -30,6 +30,11 @@ PLOTS = (
 )
 
 
+def _g(v) -> str:
+    """A case value, or 'from the blank' where the case leaves it to the geometry (None)."""
+    return "from the blank" if v is None else f"{v:g}"
+
+
 def _inputs(case) -> list[tuple[str, str]]:
     p, g = case.pinion, case.gear
     deg = np.degrees
@@ -38,9 +43,9 @@ def _inputs(case) -> list[tuple[str, str]]:
         ("normal pressure angle alpha_n", f"{deg(case.pressure_angle):g} deg"),
         ("helix angle beta", f"{deg(case.helix_angle):g} deg"),
         ("teeth z1 / z2", f"{p.teeth} / {g.teeth}{' (internal gear)' if g.internal else ''}"),
-        ("profile shift x1 / x2", f"{p.profile_shift:g} / {g.profile_shift:g}"),
-        ("face width b1 / b2", f"{p.face_width:g} / {g.face_width:g} mm"),
-        ("tip diameter d_a1 / d_a2", f"{p.tip_diameter:g} / {g.tip_diameter:g} mm"),
+        ("profile shift x1 / x2", f"{_g(p.profile_shift)} / {_g(g.profile_shift)}"),
+        ("face width b1 / b2", f"{_g(p.face_width)} / {_g(g.face_width)} mm"),
+        ("tip diameter d_a1 / d_a2", f"{_g(p.tip_diameter)} / {_g(g.tip_diameter)} mm"),
         ("basic rack h_aP0 / h_fP0 / rho_aP0", f"{case.rack_addendum:g} / {case.rack_dedendum:g} / "
                                                f"{case.rack_tip_radius:g} x m_n"),
         ("Young's modulus / Poisson ratio", f"{case.young:g} MPa / {case.poisson:g}"),
