@@ -47,7 +47,7 @@ def _inputs(case) -> list[tuple[str, str]]:
         ("face width b1 / b2", f"{_g(p.face_width)} / {_g(g.face_width)} mm"),
         ("tip diameter d_a1 / d_a2", f"{_g(p.tip_diameter)} / {_g(g.tip_diameter)} mm"),
         ("basic rack h_aP0 / h_fP0 / rho_aP0", f"{case.rack_addendum:g} / {case.rack_dedendum:g} / "
-                                               f"{case.rack_tip_radius:g} x m_n"),
+                                               f"{case.rack_tip_radius:g} mm"),
         ("Young's modulus / Poisson ratio", f"{case.young:g} MPa / {case.poisson:g}"),
         ("pinion torque(s)", ", ".join(f"{t * 1e-3:g}" for t in case.torques) + " N m"),
     ]
