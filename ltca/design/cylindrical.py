@@ -119,7 +119,7 @@ class CylindricalBackend:
             m = self._members(v.member)[0]
             mods = getattr(self.case, m).modifications
             if v.name == "tip_relief_length_mm":
-                rb, L_tip, L_form = self._roll_lengths(m)
+                rb, L_tip, _ = self._roll_lengths(m)
                 prof = self.model.pinion if m == "pinion" else self.model.gear
                 rs = 0.5 * mods.tip_relief_start_diameter if mods.tip_relief_start_diameter else \
                     prof.r_tip - 0.4 * (prof.r_tip - max(prof.r_form_left, prof.r_form_right))

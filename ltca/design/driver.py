@@ -21,10 +21,10 @@ import numpy as np
 
 from ..errors import CaseError
 from .history import History
-from .problem import Evaluation, make_backend
+from .problem import Evaluation
 from .schema import DesignSpec, parse_design
 
-__all__ = ["optimise", "Search", "search", "OptimiseResult"]
+__all__ = ["optimise", "Search", "search", "OptimiseResult", "make_backend"]
 
 #: COBYQA's first trust-region radius and its last, on the variables scaled to [0, 1]
 TR_START, TR_END = 0.25, 1e-3
@@ -205,6 +205,15 @@ def optimise(case_path: str, out: str, resume: bool = False, progress: bool = Tr
         from ..outputs import write_json_atomic
         write_json_atomic(rd.out / "design.json", summary)
     return OptimiseResult(summary, Path(out))
+
+
+def make_backend(kind: str, data: dict, spec: DesignSpec, file: str | None = None, progress=None):
+    """The backend of a case kind, checked but not yet prepared (cheap)."""
+    if kind == "cylindrical":
+        from .cylindrical import CylindricalBackend
+        return CylindricalBackend(data, spec, file, progress)
+    raise CaseError("design", "[table]", f"a cylindrical case: the {kind} design backend (synthesis, TCA and LTCA "
+                    "per candidate) is not available yet", file)
 
 
 def _check_edges(spec: DesignSpec, backend, ev_start: Evaluation, file: str) -> None:

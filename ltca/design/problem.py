@@ -23,16 +23,15 @@ A backend (cylindrical now: :class:`ltca.design.cylindrical.CylindricalBackend`;
 ``torques_nm``, ``prepare_seconds``, ``positions``, ``fidelity``
     the case's torques (N m), the one-off cost and the analysis settings.
 
-The driver (:mod:`ltca.design.driver`) only talks to this interface.
+The driver (:mod:`ltca.design.driver`) picks the backend of a case and only talks to this interface.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..errors import CaseError
 from .schema import DesignSpec
 
-__all__ = ["Measures", "Evaluation", "score", "make_backend", "PENALTY"]
+__all__ = ["Measures", "Evaluation", "score", "PENALTY"]
 
 #: an infeasible candidate costs its objective plus PENALTY x (1 + 10 x violation) x the start's objective, so the
 #: search never prefers it to a feasible one and still sees which infeasible candidates are closer
@@ -101,12 +100,3 @@ def score(spec: DesignSpec, values: dict, m: Measures) -> Evaluation:
     p_v = max(0.0, max(m.flank_pressure_mpa) / lim - 1.0) if lim is not None else 0.0
     e_v = m.edge_share if spec.constraints.misalignment_um > 0 else 0.0
     return Evaluation(dict(values), m, float(objective), float(p_v), float(e_v))
-
-
-def make_backend(kind: str, data: dict, spec: DesignSpec, file: str | None = None, progress=None):
-    """The backend of a case kind, checked but not yet prepared (cheap)."""
-    if kind == "cylindrical":
-        from .cylindrical import CylindricalBackend
-        return CylindricalBackend(data, spec, file, progress)
-    raise CaseError("design", "[table]", f"a cylindrical case: the {kind} design backend (synthesis, TCA and LTCA "
-                    "per candidate) is not available yet", file)
