@@ -4,7 +4,7 @@ resumable history, and the known optimum of FZG C14's linear tip relief.
 Fast: bad tables exit 2 naming the field; a tiny search (one variable, few positions) writes every file and
 resumes from its history. Slow: a 9 x 9 brute-force grid over (tip relief amount, length) at 200 N m is the
 reference the search must reach with at most a quarter of the grid's evaluations, and the optimal relief is the
-tooth-pair deflection from our own LTCA stiffness within 20 %.
+tooth-pair deflection F_bt / (b c_gamma) from our own LTCA mesh stiffness within 20 %.
 """
 from __future__ import annotations
 
@@ -138,7 +138,7 @@ def test_search_finds_the_grid_optimum_of_fzg_tip_relief(tmp_path):
     """Spur FZG C14 at its design torque 200 N m, linear tip relief on pinion and gear: the 9 x 9 objective map
     over (amount 0-40 um, length 1-9 mm) is the brute-force reference; COBYQA from (10 um, 4 mm) lands within 2 %
     of its objective or 5 % of its variables with at most 81 / 4 candidates. The optimal relief is the
-    tooth-pair deflection at 200 N m (F_bt / (b c'), c' from our own LTCA) within 20 %."""
+    tooth-pair deflection at 200 N m (F_bt / (b c_gamma), c_gamma our own LTCA's mean mesh stiffness) within 20 %."""
     from ltca.design import optimise
     case = _case(tmp_path, map_points=9, harris_torque_nm=[100.0, 200.0], constraints={})
     s = optimise(str(case), str(tmp_path / "out"), progress=False, full_runs=False).summary
@@ -153,6 +153,9 @@ def test_search_finds_the_grid_optimum_of_fzg_tip_relief(tmp_path):
     assert s["optimum"]["objective_arcsec"] < 0.2 * s["baseline"]["objective_arcsec"]
     rule = s["design_rule"]
     assert 12.0 < rule["single_pair_stiffness_n_per_mm_um"] < 20.0        # ISO 6336-1 c' of steel spur gears ~14
+    assert 15.0 < rule["mesh_stiffness_n_per_mm_um"] < 25.0                # c_gamma ~ 20
     assert 0.8 <= rule["relief_over_deflection"] <= 1.2, rule
+    # the rule's bounds: the pair's own deflection (common body deflection apart) and the whole single-pair approach
+    assert rule["deflection_pair_only_um"] < rule["deflection_um"] < rule["deflection_single_pair_um"]
     t = s["timings_s"]
     assert t["search_per_candidate_per_torque_median"] < 2.0

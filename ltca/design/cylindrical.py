@@ -215,20 +215,25 @@ class CylindricalBackend:
 
     def pair_deflection_um(self, torque_nm: float, values: dict[str, float] | None = None) -> dict:
         """The tooth-pair deflection at a torque from our own LTCA, for the classic rule "linear tip relief = the
-        deflection of a tooth pair at the design load": the load on the line of action over the face width
-        divided by the single stiffness, delta = F_bt / (b c'), with c' the largest mesh stiffness
-        (``ltca.cylindrical.results.mesh_stiffness``) over the positions where one tooth pair carries the load
-        (ISO 6336-1: c' the maximum stiffness of one tooth pair), of the case's own modifications (or
-        ``values``). Also returned: the deflection with the smallest single-pair stiffness (the largest approach
-        in the single-pair zone) and the mean mesh stiffness over the cycle, N/(mm um)."""
+        deflection of the tooth pair at the design load": delta = F_bt / (b c_gamma), the load on the line of action
+        over the face width and the mesh stiffness c_gamma (ISO 6336-1: the mean over the mesh cycle; the
+        ``mesh_stiffness_mean_n_per_mm_um`` of ``ltca run``), of the case's own modifications (or ``values``).
+
+        Also returned, as the bounds of the rule: with the single-pair stiffness c' (the largest mesh stiffness
+        where one pair carries the load) the whole approach of one pair, body included; and the pair's own part,
+        2 (delta_1 - delta_2) from the approach with one pair (delta_1) and with two sharing (delta_2), without the
+        deflection common to every pair (rim, web, bore), which a relief does not need to take up."""
         from ..cylindrical.results import mesh_stiffness
         lm = self.loaded(values or self.baseline())
         res = self._cycle(lm, torque_nm)
         c = mesh_stiffness(lm, np.array([r.theta for r in res]), np.array([r.theta0 for r in res]), 1e3 * torque_nm)
-        single = np.array([sum(v > 1e-3 * r.force.sum() for v in r.pair_load.values()) == 1 for r in res])
-        cs = c[single] if single.any() else c
+        pairs = np.array([sum(v > 1e-3 * r.force.sum() for v in r.pair_load.values()) for r in res])
         F_t = 1e3 * torque_nm / self.model.pinion.r_base       # transverse load on the line of action, N
-        b = self.model.face_width
-        return {"deflection_um": float(F_t / (b * cs.max())), "single_pair_stiffness_n_per_mm_um": float(cs.max()),
-                "deflection_largest_um": float(F_t / (b * cs.min())), "single_pair_positions": int(single.sum()),
-                "mean_stiffness_n_per_mm_um": float(c.mean())}
+        w = F_t / self.model.face_width                       # N/mm
+        out = {"deflection_um": float(w / c.mean()), "mesh_stiffness_n_per_mm_um": float(c.mean())}
+        if (pairs == 1).any():
+            d1 = w / c[pairs == 1].max()
+            out.update(single_pair_stiffness_n_per_mm_um=float(c[pairs == 1].max()), deflection_single_pair_um=d1)
+            if (pairs == 2).any():
+                out["deflection_pair_only_um"] = float(2 * (d1 - w / c[pairs == 2].max()))
+        return out
