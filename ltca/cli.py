@@ -1,4 +1,4 @@
-"""The ``ltca`` command: run, tca, forming, study, convergence, validate, bench, budget, chain.
+"""The ``ltca`` command: run, tca, forming, study, optimise, convergence, validate, bench, budget, chain.
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
@@ -114,6 +114,18 @@ def _cmd_chain(a: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_optimise(a: argparse.Namespace) -> int:
+    from .design import optimise
+    res = optimise(a.case, a.out, resume=a.resume, progress=not a.quiet, full_runs=not a.no_full_runs,
+                   workers=a.workers)
+    import json
+    s = res.summary
+    print(json.dumps({"optimum": s["optimum"]["values"], "objective_arcsec": {
+        k: s[k]["objective_arcsec"] for k in ("baseline", "start", "optimum")}, "evaluations": s["evaluations"],
+        "timings_s": s["timings_s"]}, indent=1))
+    return 0
+
+
 def _cmd_keys(a: argparse.Namespace) -> int:
     from .keys import keys_markdown, keys_text
     print(keys_markdown(a.table) if a.markdown else keys_text(a.table), end="")
@@ -184,6 +196,23 @@ def build_parser() -> argparse.ArgumentParser:
                    help="only this table, e.g. load, pinion, pinion.modifications (default: every table)")
     k.add_argument("--markdown", action="store_true", help="print Markdown tables (docs/case_keys.md)")
     k.set_defaults(func=_cmd_keys)
+
+    o = sub.add_parser("optimise", help="design optimisation driven by the LTCA: the [design] table's variables",
+                       description="Searches the [design] variables of a case (flank modifications of a cylindrical "
+                                   "pair) for the smallest loaded TE peak-to-peak under the constraints, each "
+                                   "candidate a loaded analysis on a compliance computed once. Writes design.json, "
+                                   "history.jsonl, settings.csv, the optimum's case file and LTCA outputs, the "
+                                   "Harris map and the objective map into --out.")
+    o.add_argument("case", help="case file (.toml) with a [design] table")
+    o.add_argument("--out", default="out/optimise", help="output directory (default: out/optimise)")
+    o.add_argument("--resume", action="store_true",
+                   help="take over the candidates an interrupted run on the same --out finished; go on from there")
+    o.add_argument("--no-full-runs", action="store_true",
+                   help="skip the full LTCA of the optimum (ltca run with a fresh compliance)")
+    o.add_argument("--workers", type=_positive_int, default=None,
+                   help="processes for the objective map and the Harris curves (default: the cores, at most 2)")
+    o.add_argument("--quiet", action="store_true", help="no progress output")
+    o.set_defaults(func=_cmd_optimise)
 
     t = sub.add_parser("tca", help="unloaded tooth contact analysis (separation, path, TE, contact ratio)",
                        description="Unloaded TCA: separation field, contact path, unloaded TE, contact ratio. "
