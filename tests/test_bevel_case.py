@@ -51,11 +51,34 @@ def test_plots_and_separation_figures(summary):
     assert all(not v.startswith("undercut") for m in disk["undercut"].values() for v in m.values())
 
 
-def test_benchmark_reports_medians():
-    med = bevel_benchmark(repeat=1)
-    assert set(med) == {"generation", "tca", "separation", "synthesis"}
-    # issue 3 targets 2 s, 2 s, 10 s: speed is measured (printed), not asserted
-    assert all(v > 0 for v in med.values())
+def test_benchmark_reports_medians(monkeypatch):
+    """The benchmark times each stage and reports the median of the repeats: every stage replaced by a stand-in
+    that advances a fake clock by a known time per repeat (synthesis 3, 1, 2 s -> median 2 s; generation 0.5 s
+    per member call + 0.25 s per pinion flank; tca 5, 7, 6 s; separation 9, 8, 10 s). Speed itself is measured
+    and printed, not asserted (issue 3 targets 2 s, 2 s, 10 s)."""
+    import time as _time
+    import geometry.bevel.generation as gen
+    import ltca.bevel.run as run
+    clock = [1000.0]
+    steps = {"synthesis": iter([3.0, 1.0, 2.0]), "tca": iter([5.0, 7.0, 6.0]), "separation": iter([9.0, 8.0, 10.0])}
+
+    def advance(dt):
+        clock[0] += dt
+
+    monkeypatch.setattr(_time, "perf_counter", lambda: clock[0])
+    monkeypatch.setattr(run, "BevelPair", lambda *a, **k: None)
+    monkeypatch.setattr(run, "generate_member", lambda *a, **k: advance(0.5))
+    monkeypatch.setattr(gen, "generate_flank", lambda *a, **k: advance(0.25))
+    monkeypatch.setattr(run, "tca", lambda *a, **k: advance(next(steps["tca"])))
+    monkeypatch.setattr(run, "separation_tca", lambda *a, **k: advance(next(steps["separation"])))
+
+    class _Pin:                                        # the stand-in pinion's flanks for generate_flank
+        def flank(self, side):
+            return side
+    monkeypatch.setattr(run, "synthesize_pinion",
+                        lambda *a, **k: (advance(next(steps["synthesis"])), (_Pin(), None))[1])
+    med = bevel_benchmark(repeat=3)
+    assert med == {"synthesis": 2.0, "generation": 1.0, "tca": 6.0, "separation": 9.0}
 
 
 @pytest.mark.parametrize("old,new,field", [("pinion_teeth = 12", "pinion_teeth = 12.5", "bevel.pinion_teeth"),
