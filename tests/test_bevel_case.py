@@ -26,12 +26,23 @@ def test_summary_meets_seed_targets(summary):
             assert key in f
         assert abs(f["path_angle_deg"] - eta) < 1.0                    # seed 000 sec. 4 targets
         assert f["te_amplitude_arcsec"] == pytest.approx(te, rel=0.05)
+        # measured apart from the continuous TCA the synthesis drives: the separation-field TCA's TE range
+        assert f["separation_te_range_arcsec"] == pytest.approx(te, rel=0.02)
         assert f["te_r2"] > 0.99 and f["contact_ratio"] > 1.0
     for member in ("gear", "pinion"):
         for side in ("concave", "convex"):
             assert "radial_setting_mm" in disk["machine_settings"][member][side]
     assert disk["machine_settings"]["pinion"]["concave"]["blank_offset_mm"] == 0.0   # redesigned Em1
     assert abs(disk["design"]["coast"]["blank_offset_mm"]) > 1.0                       # first design had one
+
+
+def test_te_parabola_curvature_by_hand():
+    """Seed 000 Eq. 2-3: TE = (m21 / 2) phi1^2 reaches the magnitude at the transfer points phi1 = +-pi / z1, so
+    m21 = -2 TE / (pi / z1)^2; z1 = 12, TE = 8.25 arcsec = 3.99970e-5 rad: m21 = -1.16713e-3 rad/rad^2."""
+    from geometry.bevel.synthesis import te_curvature
+    te = 8.25 / 206264.806
+    assert te == pytest.approx(3.99970e-5, rel=1e-5)
+    assert te_curvature(te, 12) == pytest.approx(-1.16713e-3, rel=1e-5)
 
 
 def test_plots_and_separation_figures(summary):
