@@ -8,7 +8,8 @@ import pytest
 from conftest import CASES
 
 CYLINDRICAL = ["fzg_c14.toml", "helical_c14.toml", "internal_spur.toml", "fzg_c14_pitch_errors.toml",
-               "helical_m8_wide.toml", "example_commented.toml", "fzg_c14_optimise.toml"]
+               "helical_m8_wide.toml", "example_commented.toml", "fzg_c14_optimise.toml",
+               "fzg_c14_modified.toml"]
 
 
 @pytest.mark.parametrize("name", CYLINDRICAL)
