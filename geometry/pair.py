@@ -98,8 +98,9 @@ class CylindricalPair:
         rb1, rb2 = pinion.r_base, gear.r_base
         self.alpha_w = np.arccos((rb2 - rb1) / self.a) if self.internal else np.arccos((rb1 + rb2) / self.a)
         self.r_w1 = rb1 / np.cos(self.alpha_w)
-        # line-of-action direction at the pitch point for the right pinion flank driving clockwise
-        self.n_loa = np.array([np.cos(self.alpha_w), -np.sin(self.alpha_w), 0.0])
+        # line-of-action direction at the pitch point for the right pinion flank driving clockwise: the
+        # outward normal of that flank at the pitch point (0, r_w1), tangent to the base circle
+        self.n_loa = np.array([np.cos(self.alpha_w), np.sin(self.alpha_w), 0.0])
         pivot = np.array([0.0, self.r_w1, 0.0])
         u = np.cross(self.n_loa, [0.0, 0.0, 1.0])
         self.T_mis = (axis_rotation(u, -misalignment / self.b, pivot)

@@ -229,6 +229,8 @@ _DOC: dict[str, dict[str, tuple[str, str]]] = {
                  "fidelity": ("-", "element sizes and contact grid: coarse (fast), default, fine")},
 }
 _TOP = {"case", "gear_pair", "cutter", "pinion", "gear", "assembly", "material", "load", "analysis"}
+#: top-level tables read elsewhere: [design] by ltca.design.schema (``ltca optimise``)
+_ELSEWHERE = {"design"}
 
 
 def _section(data: dict, name: str, schema: str, file: str | None, required: bool = False) -> dict:
@@ -307,11 +309,11 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
     """Validate a case given as a dict (as read from TOML) and convert it to internal units."""
     from .validation import check_kind
     check_kind(data, "cylindrical", file)
-    extra = set(data) - _TOP
+    extra = set(data) - _TOP - _ELSEWHERE
     if extra:
         key = sorted(extra)[0]
         raise CaseError(key, "[table]" if isinstance(data[key], dict) else data[key],
-                        f"unknown key; allowed top-level tables are {sorted(_TOP)}", file)
+                        f"unknown key; allowed top-level tables are {sorted(_TOP | _ELSEWHERE)}", file)
     c = _section(data, "case", "case", file)
     gp = _section(data, "gear_pair", "gear_pair", file, required=True)
     cu = _section(data, "cutter", "cutter", file)

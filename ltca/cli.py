@@ -1,4 +1,4 @@
-"""The ``ltca`` command: run, tca, forming, study, convergence, validate, bench, budget, chain.
+"""The ``ltca`` command: run, tca, forming, study, optimise, convergence, validate, bench, budget, chain.
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
@@ -39,7 +39,8 @@ def _cmd_run(a: argparse.Namespace) -> int:
         return 0
     from .cylindrical.run import run_case
     run_case(a.case, out=a.out, fidelity=a.fidelity, positions=a.positions, progress=not a.quiet,
-             cache=a.cache, resume=a.resume, max_output_gb=a.max_output_gb, torques=a.torque)
+             cache=a.cache, resume=a.resume, max_output_gb=a.max_output_gb, torques=a.torque,
+             paraview_steps=a.paraview_steps)
     return 0
 
 
@@ -119,10 +120,32 @@ def _cmd_chain(a: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_optimise(a: argparse.Namespace) -> int:
+    from .design import optimise
+    res = optimise(a.case, a.out, resume=a.resume, progress=not a.quiet, full_runs=not a.no_full_runs,
+                   workers=a.workers)
+    import json
+    s = res.summary
+    print(json.dumps({"optimum": s["optimum"]["values"], "objective_arcsec": {
+        k: s[k]["objective_arcsec"] for k in ("baseline", "start", "optimum")}, "evaluations": s["evaluations"],
+        "timings_s": s["timings_s"]}, indent=1))
+    return 0
+
+
 def _cmd_keys(a: argparse.Namespace) -> int:
     from .keys import keys_markdown, keys_text
     print(keys_markdown(a.table) if a.markdown else keys_text(a.table), end="")
     return 0
+
+
+def _nonnegative_int(text: str) -> int:
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not an integer") from None
+    if not 0 <= v <= 100000:
+        raise argparse.ArgumentTypeError(f"{v}: must be in [0, 100000]")
+    return v
 
 
 def _positive_int(text: str) -> int:
@@ -150,7 +173,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     r = sub.add_parser("run", help="loaded TCA over a mesh cycle: TE, bearing pattern, load sharing, root stress",
                        description="Loaded tooth contact analysis of a case over one mesh cycle. Writes "
-                                   "summary.json, results.nc, PNG plots and a VTU into --out.")
+                                   "summary.json, results.nc, PNG plots, report.html (one self-contained page), "
+                                   "a VTU and the ParaView series paraview.pvd into --out.")
     r.add_argument("case", help="case file (.toml)")
     r.add_argument("--out", default="out", help="output directory (default: out)")
     r.add_argument("--fidelity", choices=["coarse", "default", "fine"], help="override the case's fidelity")
@@ -163,6 +187,10 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--max-output-gb", type=float, default=2.0, metavar="GB",
                    help="refuse a run whose results and memory are estimated above this (default 2 GB)")
     r.add_argument("--cache", default=None, help="directory for the mesh cache (default: none, cold run)")
+    r.add_argument("--paraview-steps", type=_nonnegative_int, default=10, metavar="N",
+                   help="positions of the first torque in the ParaView series paraview.pvd (displacement, stress, "
+                        "flank pressure), spread over the cycle with the pitch position; 0: none, more than the "
+                        "positions: all (default 10; FZG C14: about 0.15 s and 1.3 MB per position)")
     r.add_argument("--quiet", action="store_true", help="no progress output")
     r.set_defaults(func=_cmd_run)
 
@@ -174,6 +202,23 @@ def build_parser() -> argparse.ArgumentParser:
                    help="only this table, e.g. load, pinion, pinion.modifications (default: every table)")
     k.add_argument("--markdown", action="store_true", help="print Markdown tables (docs/case_keys.md)")
     k.set_defaults(func=_cmd_keys)
+
+    o = sub.add_parser("optimise", help="design optimisation driven by the LTCA: the [design] table's variables",
+                       description="Searches the [design] variables of a case (flank modifications of a cylindrical "
+                                   "pair) for the smallest loaded TE peak-to-peak under the constraints, each "
+                                   "candidate a loaded analysis on a compliance computed once. Writes design.json, "
+                                   "history.jsonl, settings.csv, the optimum's case file and LTCA outputs, the "
+                                   "Harris map and the objective map into --out.")
+    o.add_argument("case", help="case file (.toml) with a [design] table")
+    o.add_argument("--out", default="out/optimise", help="output directory (default: out/optimise)")
+    o.add_argument("--resume", action="store_true",
+                   help="take over the candidates an interrupted run on the same --out finished; go on from there")
+    o.add_argument("--no-full-runs", action="store_true",
+                   help="skip the full LTCA of the optimum (ltca run with a fresh compliance)")
+    o.add_argument("--workers", type=_positive_int, default=None,
+                   help="processes for the objective map and the Harris curves (default: the cores, at most 2)")
+    o.add_argument("--quiet", action="store_true", help="no progress output")
+    o.set_defaults(func=_cmd_optimise)
 
     t = sub.add_parser("tca", help="unloaded tooth contact analysis (separation, path, TE, contact ratio)",
                        description="Unloaded TCA: separation field, contact path, unloaded TE, contact ratio. "
@@ -224,7 +269,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="analytic references and tables (default); calculix: the CalculiX cross-check on our body "
                         "(slow: 5-15 min per position on 2 cores, plus 30-45 min per pressure ladder); calculix-whole: "
                         "CalculiX on whole gears with every tooth and their own supports, independent of our body "
-                        "(5-10 min per position)")
+                        "(15-20 min per position on 2 cores)")
     v.add_argument("--case", default="cases/fzg_c14.toml", help="case for --reference calculix")
     v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
                    help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9)")

@@ -1,9 +1,11 @@
 """``ltca keys``: the reference of every key of a cylindrical case file, generated from the schema in
-:mod:`ltca.case` (type, unit, default, allowed range) and the meaning kept beside it, so it cannot drift.
+:mod:`ltca.case` (type, unit, default, allowed range) and the meaning kept beside it, so it cannot drift; the
+``[design]`` table of ``ltca optimise`` from :mod:`ltca.design.schema`.
 ``docs/case_keys.md`` is this module's Markdown output (tests/test_case_keys.py checks it is up to date)."""
 from __future__ import annotations
 
 from .case import key_reference
+from .design.schema import design_key_reference
 from .errors import CaseError
 
 __all__ = ["keys_text", "keys_markdown", "tables"]
@@ -14,12 +16,17 @@ HEADER = ("# Case keys (cylindrical `ltca run` / `ltca tca` cases)\n\n"
           "given. A fully commented example: `cases/example_commented.toml`.\n")
 
 
+def _all_rows() -> list[dict]:
+    """The case keys, then the [design] keys of ``ltca optimise`` (ltca.design.schema)."""
+    return key_reference() + design_key_reference()
+
+
 def tables() -> list[str]:
-    return list(dict.fromkeys(r["table"] for r in key_reference()))
+    return list(dict.fromkeys(r["table"] for r in _all_rows()))
 
 
 def _rows(table: str | None) -> list[dict]:
-    rows = key_reference()
+    rows = _all_rows()
     if table is not None:
         if table not in tables():
             raise CaseError("TABLE", table, "one of " + ", ".join(tables()))

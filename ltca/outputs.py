@@ -34,7 +34,9 @@ __all__ = ["check_out_dir", "RunDir", "atomic_path", "write_json_atomic", "Posit
 #: results of ``ltca run`` that a fresh start removes (stale results of an earlier run)
 OUTPUTS = ("summary.json", "results.nc", "te.png", "load_sharing.png", "bearing_pattern.png", "root_stress.png",
            "pinion_loaded.vtu", "gear_loaded.vtu", "positions.jsonl", "te_unloaded.png", "te_ptp.png",
-           "te_harmonics.png")
+           "te_harmonics.png", "report.html", "bearing_pattern_diameter.png", "paraview.pvd")
+#: name patterns of results that a fresh start removes too (the ParaView series' parts)
+OUTPUT_GLOBS = ("paraview_*.vtu",)
 LOCK = ".ltca.lock"
 STATUS = "run.json"
 
@@ -197,9 +199,10 @@ class RunDir:
                         with contextlib.suppress(OSError):
                             (self.out / name).unlink()
             else:
-                for name in OUTPUTS:     # stale results of an earlier run
+                stale = [self.out / n for n in OUTPUTS] + [p for g in OUTPUT_GLOBS for p in self.out.glob(g)]
+                for path in stale:       # stale results of an earlier run
                     with contextlib.suppress(OSError):
-                        (self.out / name).unlink()
+                        path.unlink()
                 PositionStore.clear(self.out)
             self.status = {"status": "running", "command": self.command, "pid": os.getpid(),
                            "host": socket.gethostname(), "started": _now(), "signature": self.signature,

@@ -32,6 +32,9 @@ def result():
 
 @pytest.mark.parametrize("name", list(TABLE3))
 def test_members_match_table3(result, name):
+    """Shaft and coupling: Table 2 against Table 3 (independent). Gear and spline: a consistency check only (their
+    b r_b^2 and ball radius were read back from this table, test_implied_radii); the hand calculation from Eq. 19
+    is in test_drivetrain_hand.py."""
     mine = result.deflection[result.names.index(name)] / DEG * 1e3
     table = np.array(TABLE3[name])
     tol = np.maximum(0.01 * table, 0.005)          # 1 % or half the last printed digit

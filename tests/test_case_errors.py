@@ -20,11 +20,12 @@ def _edit(old: str, new: str) -> str:
 BAD = {
     "negative teeth": (_edit("teeth = 16", "teeth = -16"), "pinion.teeth"),
     "zero teeth": (_edit("teeth = 24", "teeth = 0"), "gear.teeth"),
-    "pointed tooth": (_edit("profile_shift = 0.1817\nface_width_mm = 14.0\ntip_diameter_mm = 82.456",
-                            "profile_shift = 1.2\nface_width_mm = 14.0\ntip_diameter_mm = 95.0"), "pinion"),
+    "tip beyond the rack's reach": (_edit("profile_shift = 0.1817\nface_width_mm = 14.0\ntip_diameter_mm = 82.456",
+                                          "profile_shift = 1.2\nface_width_mm = 14.0\ntip_diameter_mm = 95.0"),
+                                    "pinion.tip_diameter_mm"),
     "undercut-impossible tooth": (_edit("teeth = 16\nprofile_shift = 0.1817", "teeth = 5\nprofile_shift = -1.0")
                                   .replace("tip_diameter_mm = 82.456\n", "").replace("bore_diameter_mm = 40.0\n", ""),
-                                  "pinion"),
+                                  "pinion.profile_shift"),
     "interfering internal pair": ((CASES / "internal_spur.toml").read_text().replace("teeth = 60", "teeth = 24")
                                   .replace("tip_diameter_mm = 175.0", "tip_diameter_mm = 66.0")
                                   .replace("bore_diameter_mm = 210.0", "bore_diameter_mm = 100.0"), "gear.teeth"),
@@ -52,7 +53,7 @@ def test_bad_case_exits_2_and_names_the_field(name, tmp_path, capsys):
     status = main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"])
     err = capsys.readouterr().err
     assert status == 2
-    assert f"'{field}" in err, err
+    assert f"'{field}'" in err, err          # the exact field, quoted
     assert "Traceback" not in err
     assert len(err.strip().splitlines()) == 1
 

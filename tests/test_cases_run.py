@@ -8,7 +8,8 @@ import pytest
 from conftest import CASES
 
 CYLINDRICAL = ["fzg_c14.toml", "helical_c14.toml", "internal_spur.toml", "fzg_c14_pitch_errors.toml",
-               "helical_m8_wide.toml", "example_commented.toml"]
+               "helical_m8_wide.toml", "example_commented.toml", "fzg_c14_optimise.toml",
+               "fzg_c14_modified.toml"]
 
 
 @pytest.mark.parametrize("name", CYLINDRICAL)
@@ -38,7 +39,8 @@ def test_cylindrical_case_runs_and_writes_results(name, tmp_path):
 
 def test_every_case_file_is_covered():
     # budget and chain cases run in test_budget.py / test_chain.py, the bevel case in test_bevel_case.py,
-    # the planetary satellite (seed 004) through `ltca run`, `tca` and `forming` in test_planetary.py
+    # the planetary satellite (seed 004) through `ltca run`, `tca` and `forming` in test_planetary.py; the [design]
+    # table of fzg_c14_optimise.toml through `ltca optimise` in test_design.py
     covered = set(CYLINDRICAL) | {"budget_wang.toml", "chain_zftkk250.toml", "spiral_bevel_cao2008.toml",
                                   "eccentric_planetary_satellite.toml"}
     assert {p.name for p in CASES.glob("*.toml")} <= covered

@@ -32,6 +32,8 @@ def evs():
 
 
 def test_indexing_z1_table3_4(evs):
+    """Consistency check: the printed zk, fp and F of Table 3 are inputs (the case file), so this reproduces the
+    paper's arithmetic; the rules by hand are in test_drivetrain_hand.py."""
     ev = evs["indexing_z1"]
     # Table 3 F and dphi columns from fi, Fpr and the printed zk, fp
     np.testing.assert_allclose(ev.F, [20, 18, 20, 18, 18, 19.6, 19.6875, 19.6875, 12.525, 28.4])
@@ -47,6 +49,7 @@ def test_indexing_z1_table3_4(evs):
 
 
 def test_indexing_z2_table5_6(evs):
+    """Consistency check (printed zk, fp, F and the turns factor of the tables are inputs)."""
     ev = evs["indexing_z2"]
     np.testing.assert_allclose(ev.F[3:], [18, 18, 18, 18, 22.5, 12.225, 24.2])          # Table 5
     np.testing.assert_allclose(np.round(ev.dphi[3:], 4),
@@ -59,6 +62,7 @@ def test_indexing_z2_table5_6(evs):
 
 
 def test_envelope_z1_table7_8(evs):
+    """Consistency check (printed zk, fp, F and the turns factor of the tables are inputs)."""
     ev = evs["envelope_z1"]
     np.testing.assert_allclose(np.round(ev.dphi, 2),                   # Table 7 dphi column
                                [0.01, 0.00, 0.13, 0.08, 0.03, 0.02, 0.02, 0.06, 0.08, 0.07, 0.07,
@@ -88,7 +92,7 @@ def test_recomputed_by_rules_differs(evs):
     chains = {c.name: c for c in load_chain_case(CASE)}
     again = evaluate_chain(chains["indexing_z1"], honour_printed=False)
     np.testing.assert_allclose(again.zk[5:8], [18, 24, 24])            # frac(6.4) z
-    assert again.error_percent == pytest.approx(0.1472, abs=1e-4)
+    assert again.error_percent == pytest.approx(0.1472, abs=1e-4)   # by hand: test_drivetrain_hand.py
     with pytest.raises(ValueError, match="fi and Fpr"):
         evaluate_chain(chains["envelope_z1"], honour_printed=False)
 

@@ -197,6 +197,8 @@ def test_case_keys_reference_documents_every_accepted_key(capsys):
         if schema == "member":
             accepted |= {f"{top}.modifications.{k}" for k in case._SCHEMA["modifications"]}
     assert accepted == set(case.case_keys())
+    from ltca.design.schema import design_keys
+    accepted |= design_keys()          # the [design] table of ltca optimise
     assert main(["keys"]) == 0
     text = capsys.readouterr().out
     table = None

@@ -45,8 +45,11 @@ class RootSection:
     Y_S: float
 
 
-def root_section(profile: ToothProfile, tangent_angle: float = np.pi / 6) -> RootSection:
-    """30 deg tangent root section of an external generated tooth, load at the tip corner (module doc)."""
+def root_section(profile: ToothProfile, tangent_angle: float = np.pi / 6,
+                 load_radius: float | None = None) -> RootSection:
+    """30 deg tangent root section of an external generated tooth, load at the tip corner (module doc), or with
+    ``load_radius`` (mm) on the involute at that radius (ISO 6336-3 Method B: the outer point of single tooth
+    contact, d_en / 2), along the involute normal there."""
     if profile.internal:
         raise ValueError("root_section: external teeth only (internal teeth use the 60 deg tangent)")
     xy, kind = profile.xy, profile.kind
@@ -72,7 +75,10 @@ def root_section(profile: ToothProfile, tangent_angle: float = np.pi / 6) -> Roo
     rho_F = float(np.sqrt(c[2] + c[0] ** 2 + c[1] ** 2))
     s_Fn = 2 * float(F[0])
     # load at the tip corner along the involute normal (tangent to the base circle)
-    Pt = xy[(kind == 3) & (xy[:, 0] >= 0)][-1]
+    if load_radius is None:
+        Pt = xy[(kind == 3) & (xy[:, 0] >= 0)][-1]
+    else:
+        Pt = np.asarray(profile.flank_xy(float(load_radius), +1), float)
     ra, rb = np.hypot(*Pt), profile.r_base
     ang_T = np.arctan2(Pt[0], Pt[1]) - np.arccos(rb / ra)     # cw angle of the base tangency point
     T = rb * np.array([np.sin(ang_T), np.cos(ang_T)])

@@ -89,8 +89,9 @@ def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = 
 
 def run_case(case_path: str, out: str = "out", fidelity: str | None = None, positions: int | None = None,
              progress: bool = True, cache: str | None = None, write: bool = True, resume: bool = False,
-             max_output_gb: float = 2.0, torques: list[float] | None = None) -> dict:
-    """Loaded analysis of a case over one mesh cycle; writes summary.json, results.nc, plots, VTU.
+             max_output_gb: float = 2.0, torques: list[float] | None = None, paraview_steps: int = 10) -> dict:
+    """Loaded analysis of a case over one mesh cycle; writes summary.json, results.nc, plots, VTU, report.html and
+    the ParaView series (``paraview_steps`` positions of the first torque, 0: none; :mod:`.paraview`).
 
     The output folder is checked and locked before any work, its status kept in run.json, every file written
     atomically; ``resume`` takes over the positions an interrupted run finished (:mod:`ltca.outputs`).
@@ -98,14 +99,14 @@ def run_case(case_path: str, out: str = "out", fidelity: str | None = None, posi
     import contextlib
     with contextlib.ExitStack() as stack:
         return _run_case(stack, case_path, out, fidelity, positions, progress, cache, write, resume, max_output_gb,
-                         torques)
+                         torques, paraview_steps)
 
 
 def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write, resume, max_output_gb,
-              torques=None) -> dict:
+              torques=None, paraview_steps=10) -> dict:
     from ..outputs import PositionStore, RunDir, signature_of
     from ..sizing import check_run_size
-    from .warnings import check_contact, design_warnings
+    from .warnings import check_contact, convergence_warnings, design_warnings
     t_start = time.perf_counter()
     case = load_case(case_path)
     if torques is not None:
@@ -140,7 +141,7 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
     lm = prepare(model, fid, cycle_rolls(n_pos, case.pinion.teeth), max(case.torques), cache_dir=cache,
                  progress=say)
     outdir = Path(out)
-    summaries, datasets, first, lines = [], [], None, []
+    summaries, datasets, first, lines, unconverged = [], [], None, [], []
     for it, torque in enumerate(case.torques):
         t0 = time.perf_counter()
         results = analyse(lm, rolls, torque, progress, None, store=store, it=it, lines=lines)
@@ -153,7 +154,8 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
                    "total": time.perf_counter() - t_start}
         converged = all(r.residual < 1e-6 for r in results)
         summaries.append(summary(lm, ds, timings, converged, edge_summary(lm, results, torque)))
-        warnings_t = warnings + pressure_warnings(case, summaries[-1])
+        unconverged += convergence_warnings(results, torque * 1e-3)
+        warnings_t = warnings + pressure_warnings(case, summaries[-1]) + convergence_warnings(results, torque * 1e-3)
         summaries[-1]["warnings"] = warnings_t
         datasets.append(ds)
         head = summaries[-1]
@@ -196,9 +198,25 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
             write_vtu(stage / "pinion_loaded.vtu", lm.body1, W1.T @ r.force, rotation_z(model.phi_pitch - r.roll))
             write_vtu(stage / "gear_loaded.vtu", lm.body2, W2.T @ r.force,
                       model.pair.gear_frame(model.phi_pitch - r.roll))
+            pv = None
+            if paraview_steps:
+                from .paraview import write_series
+                t0 = time.perf_counter()
+                pv = write_series(stage, lm, first, case.torques[0], steps=paraview_steps)
+                head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
+                head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": case.torques[0] * 1e-3,
+                                    "roll_deg": pv["roll_deg"], "flank_peak_mpa": pv["flank_peak_mpa"]}
+            from .html_report import write_run_report
+            t0 = time.perf_counter()
+            extra = write_run_report(stage, lm, case_path, head, all_ds, n_pos, fid_name, unconverged,
+                                     head["timings_s"], "paraview.pvd" if pv else None)
+            head["timings_s"]["report"] = round(time.perf_counter() - t0, 3)
+            head["iso6336"] = extra["comparisons"]
+            head["striping_index"] = {f"{t:g}": round(v, 4) for t, v in extra["striping"].items()}
         write_json_atomic(outdir / "summary.json", head)
-        say(f"wrote {outdir}/summary.json, results.nc, te.png, te_ptp.png, te_harmonics.png, load_sharing.png, "
-            "bearing_pattern.png, root_stress.png, pinion_loaded.vtu, gear_loaded.vtu")
+        say(f"wrote {outdir}/summary.json, report.html, results.nc, te.png, te_ptp.png, te_harmonics.png, "
+            "load_sharing.png, bearing_pattern.png, bearing_pattern_diameter.png, root_stress.png, pinion_loaded.vtu, "
+            "gear_loaded.vtu" + (", paraview.pvd" if pv else ""))
     print(json.dumps({k: head[k] for k in ("torque_nm", "te_loaded_ptp_arcsec", "te_unloaded_ptp_arcsec",
                                            "max_flank_pressure_mpa", "max_flank_pressure_at", "edge_note",
                                            "max_contact_pressure_mpa", "max_root_stress_mpa",

@@ -8,12 +8,13 @@ import numpy as np
 
 from ..validation import DesignError
 
-__all__ = ["check_contact", "design_warnings", "pressure_warnings", "contact_ratio_transverse",
-           "UNDERCUT_LIMIT", "PRESSURE_LIMIT_MPA", "ROOT_LIMIT_MPA"]
+__all__ = ["check_contact", "design_warnings", "pressure_warnings", "convergence_warnings", "contact_ratio_transverse",
+           "UNDERCUT_LIMIT", "PRESSURE_LIMIT_MPA", "ROOT_LIMIT_MPA", "RESIDUAL_LIMIT"]
 
 UNDERCUT_LIMIT = 0.05     # undercut: involute lost above the base circle, in modules, before a warning
 PRESSURE_LIMIT_MPA = 2500.0   # static contact limit of case-hardened steel (about 1.7 x sigma_Hlim 1500 MPa)
 ROOT_LIMIT_MPA = 1200.0       # about the static bending strength of case-hardened steel
+RESIDUAL_LIMIT = 1e-6         # contact solve residual above which a position counts as not converged
 
 
 def _geometry(model):
@@ -102,3 +103,15 @@ def pressure_warnings(case, summary: dict) -> list[str]:
         out.append(f"mesh stiffness {c:.2f} N/(mm um) far below ISO 6336-1 (12-20 for steel): check the bodies "
                    "(bore_diameter_mm, rim_thickness_mm)")
     return out
+
+
+def convergence_warnings(results, torque_nm: float) -> list[str]:
+    """One line naming the positions (pinion roll, deg) whose contact solve ended above :data:`RESIDUAL_LIMIT`,
+    with the largest residual; empty when every position converged."""
+    bad = [(float(np.degrees(r.roll)), float(r.residual)) for r in results if not r.residual < RESIDUAL_LIMIT]
+    if not bad:
+        return []
+    rolls = ", ".join(f"{a:+.2f}" for a, _ in bad[:8]) + (" ..." if len(bad) > 8 else "")
+    return [f"{len(bad)} of {len(results)} positions not converged at {torque_nm:g} N m (residual up to "
+            f"{max(b for _, b in bad):.1e}, limit {RESIDUAL_LIMIT:g}): roll {rolls} deg; refine the fidelity or "
+            "check the design"]

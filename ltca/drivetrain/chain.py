@@ -8,6 +8,8 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
+import numpy as np
+
 from ltca.drivetrain.chain_case import load_chain_case
 from ltca.drivetrain.chain_model import (Chain, ChainElement, ChainEvaluation, RollRatioError, evaluate_chain,
                                          pitch_deviation_bound, roll_ratio_error)
@@ -37,6 +39,11 @@ class ChainResult:
         raise KeyError(name)
 
 
+def _cell(v: float) -> str:
+    """A CSV cell: empty for a value the case does not give (not 'nan')."""
+    return f"{v:.6g}" if np.isfinite(v) else ""
+
+
 def run_chain(case_path: str, out_dir: str | None) -> ChainResult:
     """CLI entry ``ltca chain CASE [--out DIR]``: print each chain's table; write CSVs into out_dir."""
     chains = load_chain_case(case_path)
@@ -58,7 +65,7 @@ def run_chain(case_path: str, out_dir: str | None) -> ChainResult:
         for ev in evs:
             cols = "element,teeth,D_mm,turns,zk,fp_um,F_um,dphi_deg,rot_max_deg,rot_min_deg"
             rows = [f"{e.name},{e.teeth},{e.pitch_diameter:g},{ev.turns[k]:.9g},{ev.zk[k]:.6g},"
-                    f"{ev.fp[k]:.6g},{ev.F[k]:.6g},{ev.dphi[k]:.9g},{ev.rot_max[k]:.9g},"
+                    f"{_cell(ev.fp[k])},{ev.F[k]:.6g},{ev.dphi[k]:.9g},{ev.rot_max[k]:.9g},"
                     f"{ev.rot_min[k]:.9g}" for k, e in enumerate(ev.chain.elements)]
             with open(os.path.join(out_dir, f"chain_{ev.chain.name}.csv"), "w") as fh:
                 fh.write("\n".join([cols, *rows]) + "\n")

@@ -153,6 +153,9 @@ class ChainEvaluation:
             out.append(f"{e.name:<10}{e.teeth:>5d}{e.pitch_diameter:>8.1f}{self.turns[k]:>11.4f}"
                        f"{self.zk[k]:>8.2f}{_given(self.fp[k], 8, 3)}{self.F[k]:>8.2f}{self.dphi[k]:>10.4f}"
                        f"{self.rot_max[k]:>13.2f}{self.rot_min[k]:>13.2f}")
+        if not np.all(np.isfinite(self.fp)):
+            out.append("fp '-': the source gives only F for these elements (its fi' and Fpr are lost), so the pitch "
+                       "error fp = Fpr / z is unknown; F is used as printed")
         out.append(f"{'mesh':<20}{'largest':>12}{'smallest':>12}{'theoretical':>12}")
         for p, a, b, t in zip(self.pairs, self.ratio_max, self.ratio_min, self.ratio_nom):
             out.append(f"{p:<20}{a:>12.5f}{b:>12.5f}{t:>12.5f}")

@@ -1,0 +1,35 @@
+"""Help texts (issue 16): every option of every command has a help; no source jargon ("seed 002") in the README
+or --help; the CalculiX times of --help are the README's."""
+from __future__ import annotations
+
+import argparse
+import re
+from pathlib import Path
+
+README = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+
+
+def _helps():
+    from ltca.cli import build_parser
+    p = build_parser()
+    sub = next(a for a in p._actions if isinstance(a, argparse._SubParsersAction))
+    return p, sub.choices
+
+
+def test_every_option_has_help():
+    _, commands = _helps()
+    missing = [f"{name} {a.option_strings or a.dest}" for name, c in commands.items() for a in c._actions
+               if a.help is None]
+    assert not missing, missing
+
+
+def test_no_seed_jargon_and_calculix_times_agree():
+    p, commands = _helps()
+    text = p.format_help() + "".join(c.format_help() for c in commands.values())
+    flat = " ".join(text.split())
+    assert not re.search(r"seed[ -]?0\d\d", README + flat, re.I)
+    # the whole-gear CalculiX check: the same minutes per position in the README and in --help
+    readme = re.search(r"Spur only; (\d+-\d+) min per position", README).group(1)
+    assert f"({readme} min per position on 2 cores)" in flat
+    # the check on our body
+    assert "5-15 min per position on 2 cores" in README and "5-15 min per position on 2 cores" in flat
