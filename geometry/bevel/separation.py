@@ -59,6 +59,7 @@ class _Member:
         self.pitch = 2 * np.pi / mb.z
         self.lo = np.array([0.0, self.Ai])
         self.hi = np.array([1.0, self.A0])
+        self.tol = 1e-11                       # Newton tolerance of surface points, mm
 
     def _cones(self, L):
         mb = self.mb
@@ -87,7 +88,8 @@ class _Member:
         shp = t.shape
         t, L = t.ravel(), L.ravel()
         Z, rho = self.axial(t, L)
-        x, ok = solve_axial_points(self.fc, Z, rho, self._guess(np.stack([np.clip(t, -0.2, 1.2), L], -1)))
+        x, ok = solve_axial_points(self.fc, Z, rho, self._guess(np.stack([np.clip(t, -0.2, 1.2), L], -1)),
+                                   tol=self.tol)
         st = surface_state(self.fc, x[:, 0], x[:, 1], x[:, 2])
         return st.r_w.reshape(shp + (3,)), st.n_w.reshape(shp + (3,)), ok.reshape(shp)
 

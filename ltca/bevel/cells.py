@@ -90,7 +90,7 @@ def pair_minima(lm: BevelLoadedModel, phi1: float, js, scan: tuple[int, int] = (
     h = np.tile([(t1 - t0) / (scan[0] - 1), (L1 - L0) / (scan[1] - 1)], (k, 1))
     done = ~live
     err = np.seterr(invalid="ignore", divide="ignore")      # stencils reaching off the region over the gear: inf
-    for _ in range(12):
+    for _ in range(10):
         if done.all():
             break
         xc = np.clip(x, lo + h, hi - h)
@@ -122,7 +122,7 @@ def pair_minima(lm: BevelLoadedModel, phi1: float, js, scan: tuple[int, int] = (
         best_x = np.where(accept[:, None], x_new, best_x)
         best_g = np.where(accept, g_new, best_g)
         h = np.where(accept[:, None], np.maximum(0.5 * h, [1e-3, 1e-2]), 0.5 * h)
-        done |= accept & np.all(moved < np.array([1e-6, 1e-5]), 1)
+        done |= accept & np.all(moved < np.array([2e-5, 2e-4]), 1)      # 0.2 um on the flank
         done |= np.all(h < np.array([1e-6, 1e-5]), 1)
     np.seterr(**err)
     x = best_x
@@ -186,7 +186,11 @@ def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: f
         IA, IB = np.meshgrid(np.arange(-ka, ka + 1), np.arange(-kb, kb + 1), indexing="ij")
         xi, eta = IA * dxi, IB * deta
         inside = (xi / (a + 0.5 * dxi)) ** 2 + (eta / (b + 0.5 * deta)) ** 2 <= 1.0
-        y = np.stack([xi.ravel(), eta.ravel()], 1) @ pm.D.T
+        # the lattice points evaluated: the window and its ring of neighbours (for the edge labels)
+        near = np.pad(inside, 1)
+        near = (near[1:-1, 1:-1] | near[2:, 1:-1] | near[:-2, 1:-1] | near[1:-1, 2:] | near[1:-1, :-2])
+        IA, IB, xi, eta, inside = IA[near], IB[near], xi[near], eta[near], inside[near]
+        y = np.stack([xi, eta], 1) @ pm.D.T
         bi = np.linalg.inv(pm.B)
         lat.append((IA, IB, xi, eta, inside, dxi, deta, ka, kb))
         Y.append(y)
@@ -197,10 +201,10 @@ def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: f
         E.append(np.broadcast_to(pm.E, (n, 2, 3)))
         Bi.append(np.broadcast_to(bi, (n, 2, 2)))
     U, Y, phi, P0, E, Bi = (np.concatenate(v) for v in (U, Y, phi, P0, E, Bi))
-    # tangent coordinates -> flank (t, L): du = B^-1 y, corrected twice on the exact surface
-    for _ in range(2):
-        res = _evaluate(lm, phi, U[:, 0], U[:, 1])
-        y_now = np.einsum("nai,ni->na", E, res.r1 - P0)
+    # tangent coordinates -> flank (t, L): du = B^-1 y, corrected once on the exact surface
+    for _ in range(1):
+        r1 = lm.gaps.P.surface(U[:, 0], U[:, 1])[0]            # the pinion surface alone
+        y_now = np.einsum("nai,ni->na", E, r1 - P0)
         U = U + np.einsum("nab,nb->na", Bi, np.where(np.isfinite(y_now), Y - y_now, 0.0))
     res = _evaluate(lm, phi, U[:, 0], U[:, 1])
     ok_all = res.ok & np.isfinite(res.g)
@@ -210,21 +214,22 @@ def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: f
         n = IA.size
         sl = slice(i0, i0 + n)
         i0 += n
-        ok, lab = ok_all[sl].reshape(IA.shape), lab_all[sl].reshape(IA.shape)
+        ok, lab = ok_all[sl], lab_all[sl]
         keep = inside & ok
         # edge: a kept cell with a dropped lattice neighbour (off a flank), labelled by where the neighbour went
-        edge = np.full(IA.shape, "", dtype=object)
-        pad_ok = np.pad(ok, 1, constant_values=True)
-        pad_lab = np.pad(lab, 1, constant_values="")
+        sa, sb = IA - IA.min() + 1, IB - IB.min() + 1
+        ok2 = np.ones((sa.max() + 2, sb.max() + 2), bool)
+        lab2 = np.full(ok2.shape, "", dtype=object)
+        ok2[sa, sb], lab2[sa, sb] = ok, lab
+        edge = np.full(n, "", dtype=object)
         for dp, dq in ((1, 0), (-1, 0), (0, 1), (0, -1)):
-            o = pad_ok[1 + dp:1 + dp + IA.shape[0], 1 + dq:1 + dq + IA.shape[1]]
-            lb = pad_lab[1 + dp:1 + dp + IA.shape[0], 1 + dq:1 + dq + IA.shape[1]]
+            o, lb = ok2[sa + dp, sb + dq], lab2[sa + dp, sb + dq]
             m = keep & (edge == "") & ~o & (lb != "")
             edge[m] = lb[m]
-        sel = np.flatnonzero(keep.ravel())
+        sel = np.flatnonzero(keep)
         g = PointGaps(*[getattr(res, f)[sl][sel] for f in PointGaps.__dataclass_fields__])
-        out.append(PairCells(pm.j, IA.ravel()[sel], IB.ravel()[sel], xi.ravel()[sel], eta.ravel()[sel],
-                             U[sl][sel, 0], U[sl][sel, 1], g, dxi, deta, edge.ravel()[sel].astype(str)))
+        out.append(PairCells(pm.j, IA[sel], IB[sel], xi[sel], eta[sel], U[sl][sel, 0], U[sl][sel, 1], g, dxi, deta,
+                             edge[sel].astype(str)))
     return out
 
 
