@@ -112,10 +112,10 @@ def solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: float
     # rotation would pass (re-solved with it: the loaded rotation decides, not the estimate)
     b1, b2 = lm.bodies.body1, lm.bodies.body2
     first = min(mins, key=lambda m: m.g)
-    w1, w2 = _weights_of(lm, np.array([first.j]), lm.gaps.gaps(first.j * lm.gaps.c1, np.array([first.t]),
-                                                                np.array([first.L])))
+    w1, w2 = _weights_of(lm, np.array([first.j]), lm.gaps.gaps(phi1 + first.j * lm.gaps.c1, np.array([first.t]),
+                                                                np.array([first.L]), extend=True))
     bend = float(T2 / first.v2 * ((w1 @ (w1 @ b1.C).T)[0, 0] + (w2 @ (w2 @ b2.C).T)[0, 0]))
-    use = [m for m in mins if (m.g - g_min) * m.v2 <= 5.0 * _hertz_delta(lm, m, T2) + 3.0 * abs(bend)]
+    use = [m for m in mins if m is first or (m.g - g_min) * m.v2 <= 5.0 * _hertz_delta(lm, m, T2) + 3.0 * abs(bend)]
     for _ in range(len(mins)):
         cells = [c for c in cells_of(lm, phi1, use, T2) if len(c.t)]
         sy = _system(lm, cells)
