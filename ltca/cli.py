@@ -70,13 +70,26 @@ def _cmd_study(a: argparse.Namespace) -> int:
     return 3 if run["failed"] else 0
 
 
+def _is_bevel(path: str) -> bool:
+    from .case import read_toml
+    return "bevel" in read_toml(path)
+
+
 def _cmd_convergence(a: argparse.Namespace) -> int:
+    if _is_bevel(a.case):
+        from .verify.bevel_check import run_bevel_convergence
+        run_bevel_convergence(a.case, out=a.out, positions=a.positions, progress=not a.quiet)
+        return 0
     from .verify.convergence import run_convergence
     run_convergence(a.case, out=a.out, positions=a.positions, progress=not a.quiet)
     return 0
 
 
 def _cmd_validate(a: argparse.Namespace) -> int:
+    if a.reference == "analytic" and a.case and _is_bevel(a.case):
+        from .verify.bevel_check import run_bevel_validate
+        return run_bevel_validate(a.case, a.out, progress=not a.quiet)
+    a.case = a.case or "cases/fzg_c14.toml"
     if a.reference == "calculix-whole":
         from fem.calculix.run import CcxNotFound
         from .verify.whole_check import command_line, run_whole_validation
@@ -103,6 +116,10 @@ def _cmd_validate(a: argparse.Namespace) -> int:
 
 
 def _cmd_bench(a: argparse.Namespace) -> int:
+    if _is_bevel(a.case):
+        from .verify.bevel_check import run_bevel_bench
+        run_bevel_bench(a.case, repeat=a.repeat, positions=a.positions or 21, fidelity=a.fidelity or "default")
+        return 0
     from .verify.bench import run_bench
     run_bench(a.case, repeat=a.repeat, positions=a.positions, fidelity=a.fidelity)
     return 0
@@ -270,7 +287,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "(slow: 5-15 min per position on 2 cores, plus 30-45 min per pressure ladder); calculix-whole: "
                         "CalculiX on whole gears with every tooth and their own supports, independent of our body "
                         "(15-20 min per position on 2 cores)")
-    v.add_argument("--case", default="cases/fzg_c14.toml", help="case for --reference calculix")
+    v.add_argument("--case", default=None,
+                   help="case for --reference calculix (default cases/fzg_c14.toml); a [bevel] case with the "
+                        "analytic reference runs the bevel checks (elliptic Hertz, light-load limit, V-H table)")
     v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
                    help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9)")
     v.add_argument("--refine", type=int, default=None,
