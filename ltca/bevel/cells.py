@@ -19,7 +19,6 @@ import numpy as np
 
 from fem.hertz import elliptic_hertz
 
-from .loaded_model import BevelLoadedModel
 
 __all__ = ["PairMinimum", "PairCells", "pair_minimum", "pair_minima", "pair_cells", "cells_of", "window"]
 
@@ -246,7 +245,7 @@ def _edge_labels(lm: BevelLoadedModel, U: np.ndarray, res, ok: np.ndarray) -> np
     lab[bad & (U[:, 1] > L1)] = "heel"
     rest = bad & (lab == "")
     if rest.any():
-        from .loaded_model import body_t
+        from geometry.bevel.gaps import depth_fraction as body_t
         bl = lm.pair.blank
         t2 = body_t(bl.gear, bl, 0.0, res.L2[rest], res.Rn2[rest])
         lab[np.flatnonzero(rest)] = np.where(t2 > 0.5, "gear top", "gear root")

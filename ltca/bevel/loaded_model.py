@@ -15,7 +15,7 @@ from fem.bevel_compliance import BevelComplianceSpec, bevel_compliance
 from fem.compliance import BodyCompliance
 from fem.solids.bevel_body import convex_shift
 from geometry.bevel.blank import BevelBlank, MemberBlank
-from geometry.bevel.gaps import MeshGaps
+from geometry.bevel.gaps import MeshGaps, depth_fraction as body_t
 from geometry.bevel.generation import generate_flank
 from geometry.bevel.tca import Assembly, BevelPair
 
@@ -84,15 +84,6 @@ class BevelLoadedModel:
     @property
     def fid(self) -> BevelFidelity:
         return self.bodies.fid
-
-
-def body_t(mb: MemberBlank, blank: BevelBlank, off: float, L: np.ndarray, Rn: np.ndarray) -> np.ndarray:
-    """Depth fraction of axial-section points (L, Rn) on a member's body flank grid (lowest row ``off`` above the
-    root cone, top row the face cone), :func:`geometry.bevel.generation.axial_grid`."""
-    A0 = blank.outer_cone_distance
-    root = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle)) + off
-    face = mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
-    return (Rn - root) / (face - root)
 
 
 def _member(pair: BevelPair, member: str, side: str, fid: BevelFidelity, E: float, nu: float, cache_dir, say):
