@@ -242,8 +242,9 @@ def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: f
 
 
 def _edge_labels(lm: BevelLoadedModel, U: np.ndarray, res, ok: np.ndarray) -> np.ndarray:
-    """Where a dropped lattice point lies: off the pinion flank (``pinion top/root``, ``toe``, ``heel``) or
-    beyond the gear flank (``gear top`` / ``gear root``)."""
+    """Where a dropped lattice point lies: off the pinion flank (``pinion top/root``, ``toe``, ``heel``) or off the
+    gear flank (its ``toe``/``heel``, ``gear top`` beyond the face cone, ``gear root`` below the flank grid's lowest
+    row near the root cone); '' where Newton failed on the flank itself."""
     t0, t1 = lm.gaps.t_range
     L0, L1 = lm.gaps.L_range
     lab = np.full(len(U), "", dtype=object)
@@ -256,6 +257,9 @@ def _edge_labels(lm: BevelLoadedModel, U: np.ndarray, res, ok: np.ndarray) -> np
     if rest.any():
         from geometry.bevel.gaps import depth_fraction as body_t
         bl = lm.pair.blank
-        t2 = body_t(bl.gear, bl, 0.0, res.L2[rest], res.Rn2[rest])
-        lab[np.flatnonzero(rest)] = np.where(t2 > 0.5, "gear top", "gear root")
+        L2, Rn2 = res.L2[rest], res.Rn2[rest]
+        t2 = body_t(bl.gear, bl, lm.gaps.G.off, L2, Rn2)
+        lab[np.flatnonzero(rest)] = np.select(
+            [L2 < bl.inner_cone_distance, L2 > bl.outer_cone_distance, t2 > 1.0, t2 < 0.0],
+            ["toe", "heel", "gear top", "gear root"], "")
     return lab
