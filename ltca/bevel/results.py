@@ -152,7 +152,13 @@ def write_outputs(d: Path, case: dict, pair, asm, fid, runs: dict, torques, timi
     plots = plot_all(d, case["name"], pair, ds, per, patterns, outlines, paths, runs)
     summary = dict(case=case["name"], fidelity=fid.name,
                    assembly=dict(E_mm=asm.E, P_mm=asm.P, G_mm=asm.G, sigma_deg=float(np.rad2deg(asm.d_sigma))),
-                   torques={f"{T:g}": _torque_summary(per[T], runs, T) for T in tq}, timings_s=timings, plots=plots)
+                   torques={f"{T:g}": _torque_summary(per[T], runs, T) for T in tq}, timings_s=timings, plots=plots,
+                   notes=dict(peak_pressure_mpa="with the cells at a flank edge: singular at a sharp edge and "
+                                                "mesh-dependent (grows as the cells shrink); "
+                                                "peak_pressure_interior_mpa is the figure away from the edges (ltca convergence gives its mesh ladder)",
+                              mesh_stiffness="secant: total normal force over the elastic approach at the "
+                                             "torque-weighted gear lever, mean over the cycle",
+                              te="driven sense, arcsec; negative: the gear lags"))
     write_json_atomic(d / "summary.json", summary)
     return summary
 
