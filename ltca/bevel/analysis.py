@@ -115,6 +115,6 @@ def run_bevel_ltca(case_path: str, out: str = "out", positions: int | None = Non
               f"{t['peak_pressure_interior_mpa']:10.0f} {t['peak_pressure_mpa']:10.0f} {t['max_pair_share']:9.3f} "
               f"{t['root_stress_pinion_mpa']:9.0f} {t['mesh_stiffness_mean_n_per_um']:7.0f}  "
               f"{', '.join(t['edge_locations']) or '-'}")
-    print("TE in arcsec; p int: peak pressure away from the flank edges (its convergence: ltca convergence); p edge: with the edge "
-          "cells (singular at a sharp edge, grows as the cells shrink)")
+    print("TE in arcsec; p int: peak pressure away from the flank edges (its convergence: ltca convergence); "
+          "p edge: with the edge cells (singular at a sharp edge, grows as the cells shrink)")
     return summary

@@ -104,7 +104,8 @@ def _torques(data: dict, f: str) -> tuple[float, ...]:
     if not isinstance(load, dict) or "torque_nm" not in load:
         return ()
     v = load["torque_nm"]
-    out = List(_TORQUE, 1, 20).check(v, "load.torque_nm", f) if isinstance(v, list) else [_TORQUE.check(v, "load.torque_nm", f)]
+    out = (List(_TORQUE, 1, 20).check(v, "load.torque_nm", f) if isinstance(v, list)
+           else [_TORQUE.check(v, "load.torque_nm", f)])
     if any(x == 0 for x in out):
         raise CaseError("load.torque_nm", v, "non-zero torques (the sign picks the flank)", f)
     if len(set(out)) != len(out):

@@ -19,6 +19,8 @@ import numpy as np
 
 from fem.hertz import elliptic_hertz
 
+from .model import BevelLoadedModel
+
 
 __all__ = ["PairMinimum", "PairCells", "pair_minimum", "pair_minima", "pair_cells", "cells_of", "window"]
 
@@ -48,7 +50,8 @@ class PairMinimum:
 class PairCells:
     """Cells of one pair: lattice indices (ia along the major, ib across), tangent coordinates (xi, eta, mm),
     flank coordinates (t, L), the gaps (:class:`geometry.bevel.gaps.PointGaps`), cell sizes (dxi, deta, mm) and
-    the dropped lattice points' edge labels (``edge``: per cell, the edge it borders or ''), and ``rim``: the cell borders
+    the dropped lattice points' edge labels (``edge``: per cell, the edge it borders or ''), and ``rim``: the cell
+    borders
     the window on the flank (a loaded rim cell means the window was too small)."""
     j: int
     ia: np.ndarray

@@ -35,7 +35,8 @@ class BevelPosition:
     phi1 : pinion angle;  te, te0 : loaded and unloaded TE (rad, driven sense);  theta : extra gear rotation
     under load;  pair : (n,) tooth pair of each cell;  t, L : pinion flank coordinates;  L2, Rn2 : gear
     axial-section coordinates of the touched point;  L1, Rn1 : pinion axial section;  xi, eta : tangent-plane
-    lattice coordinates;  r1 : (n, 3) cell centres on pinion tooth 0, pinion body frame;  area, force, pressure, gap0 : per cell;  edge : (n,) edge the cell borders ('' inside);
+    lattice coordinates;  r1 : (n, 3) cell centres on pinion tooth 0, pinion body frame;  area, force, pressure,
+    gap0 : per cell;  edge : (n,) edge the cell borders ('' inside);
     pair_share : {j: share of the gear torque};  root1, root2 : {pinion tooth / gear tooth: max principal
     fillet stress};  ellipse : {j: (lambda1, lambda2, v2)} of the first contact;  torque_residual :
     |sum F v2 - T2| / T2;  pinion_balance : sum F v1 / T1 (1 for conjugate levers);  iterations, residual.

@@ -105,12 +105,12 @@ def run_bevel_validate(case_path: str, out: str, progress: bool = True) -> int:
                   f"{h['max_cell_pressure'] / h['hertz_p0']:.1f} x Hertz p0 {h['hertz_p0']:.1f} MPa (the coarse FE "
                   "alone cannot resolve the contact)")
             continue
-        print(f"  {key:26s} p0 {h.get('p0', float('nan')):7.1f} vs Hertz {h['hertz_p0']:7.1f} MPa "
-              f"({100 * h.get('err_p0', float('nan')):+.2f} %), a {h.get('a', float('nan')):.3f} vs {h['hertz_a']:.3f} mm "
-              f"({100 * h.get('err_a', float('nan')):+.2f} %), b {h.get('b', float('nan')):.4f} vs {h['hertz_b']:.4f} mm "
-              f"({100 * h.get('err_b', float('nan')):+.2f} %)")
+        print(f"  {key:26s} p0 {h['p0']:7.1f} vs Hertz {h['hertz_p0']:7.1f} MPa ({100 * h['err_p0']:+.2f} %), "
+              f"a {h['a']:.3f} vs {h['hertz_a']:.3f} mm ({100 * h['err_a']:+.2f} %), "
+              f"b {h['b']:.4f} vs {h['hertz_b']:.4f} mm ({100 * h['err_b']:+.2f} %)")
     for T, v in lim.items():
-        print(f"  {T:>6s} N m: loaded - unloaded TE {v['te_minus_te0_arcsec']:+.4f} arcsec, balance {v['residual']:.1e}")
+        print(f"  {T:>6s} N m: loaded - unloaded TE {v['te_minus_te0_arcsec']:+.4f} arcsec, "
+              f"balance {v['residual']:.1e}")
     print("  V-H: shift per 0.1 mm     loaded dL   dRn   |  TCA dL   dRn  (mm; L + heel, Rn + top)")
     for r in report["vh_table_mm_per_0.1mm"]:
         print(f"    {r['error']}                       {r['loaded_dL']:+.3f} {r['loaded_dRn']:+.3f} | "
@@ -137,7 +137,8 @@ def run_bevel_convergence(case_path: str, out: str, positions: int = 8, torque_n
     rows = []
     for name in ("coarse", "default", "fine"):
         t0 = time.perf_counter()
-        bodies = prepare_bodies(pair, "concave", BevelFidelity.named(name), case["young"], case["poisson"], progress=say)
+        bodies = prepare_bodies(pair, "concave", BevelFidelity.named(name), case["young"], case["poisson"],
+                                progress=say)
         t1 = time.perf_counter()
         f = _cycle_figures(loaded_model(pair, bodies), positions, torque_nm)
         f.update(fidelity=name, compliance_s=t1 - t0, positions_s=time.perf_counter() - t1,
