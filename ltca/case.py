@@ -6,6 +6,7 @@ naming the field, its value and what is allowed; the command line turns that int
 """
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -14,7 +15,7 @@ from typing import Any
 from .errors import CaseError
 from .validation import Num, ToothMap
 
-__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "case_keys", "check_torques", "key_reference",
+__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "to_toml", "case_keys", "check_torques", "key_reference",
            "FIDELITIES"]
 
 DEG = math.pi / 180.0
@@ -407,3 +408,27 @@ def read_toml(path: str | Path) -> dict:
 def load_case(path: str | Path) -> CylindricalCase:
     """Read and validate a case file; raise CaseError for any user mistake."""
     return parse_case(read_toml(path), file=str(path))
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, list):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    raise TypeError(f"no TOML for {type(v).__name__}")
+
+
+def to_toml(data: dict, prefix: str = "") -> str:
+    """A case dict (as read from TOML: tables, scalars, lists of scalars) as TOML text, e.g. a variant's case
+    file for a standalone ``ltca run``. Floats are written exactly (``repr``)."""
+    lines = [f"{json.dumps(k)} = {_toml_value(v)}" for k, v in data.items() if not isinstance(v, dict)]
+    out = ([f"[{prefix}]"] if prefix and lines else []) + lines
+    for k, v in data.items():
+        if isinstance(v, dict):
+            sub = to_toml(v, f"{prefix}.{json.dumps(k)}" if prefix else json.dumps(k))
+            out += [""] + [sub] if sub else []
+    return "\n".join(out)

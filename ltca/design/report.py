@@ -49,7 +49,7 @@ def timing_record(hist: History) -> dict:
 
 
 def _toml(path: Path, data: dict) -> None:
-    from ..study.spec import to_toml
+    from ..case import to_toml
     write_bytes_atomic(path, (to_toml(data) + "\n").encode())
 
 

@@ -39,7 +39,7 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..case import case_keys, parse_case, read_toml
+from ..case import case_keys, parse_case, read_toml, to_toml
 from ..errors import CaseError
 from .montecarlo import MEMBERS, check_members, draw_sample
 
@@ -248,25 +248,3 @@ def _get(data: dict, key: str):
     return data
 
 
-def _value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return repr(v)
-    if isinstance(v, str):
-        return json.dumps(v)
-    if isinstance(v, list):
-        return "[" + ", ".join(_value(x) for x in v) + "]"
-    raise TypeError(f"no TOML for {type(v).__name__}")
-
-
-def to_toml(data: dict, prefix: str = "") -> str:
-    """A case dict (as read from TOML: tables, scalars, lists of scalars) as TOML text, e.g. a variant's case
-    file for a standalone ``ltca run``. Floats are written exactly (``repr``)."""
-    lines = [f"{json.dumps(k)} = {_value(v)}" for k, v in data.items() if not isinstance(v, dict)]
-    out = ([f"[{prefix}]"] if prefix and lines else []) + lines
-    for k, v in data.items():
-        if isinstance(v, dict):
-            sub = to_toml(v, f"{prefix}.{json.dumps(k)}" if prefix else json.dumps(k))
-            out += [""] + [sub] if sub else []
-    return "\n".join(out)
