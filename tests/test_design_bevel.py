@@ -83,6 +83,7 @@ def _tiny(tmp_path):
                               "max_edge_share": 0.9})
 
 
+@pytest.mark.slow      # 100 s idle, 250 s on a loaded machine: the history machinery is shared with the fast cylindrical test
 def test_tiny_bevel_search_writes_results_and_resumes(tmp_path):
     from ltca.design import optimise
     case, out = _tiny(tmp_path), tmp_path / "out"
