@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .separation import _gap, _Member, _speed
+from .separation import _gap, _Member, _speed, reference_gear_angle
 from .tca import Assembly, BevelPair, mesh_frames, to_pitch_coords
 
 __all__ = ["PointGaps", "MeshGaps", "depth_fraction"]
@@ -90,14 +90,7 @@ class MeshGaps:
         self.c1 = 2 * np.pi / bl.pinion.z
         P, G = self.P, self.G
         P.tol = G.tol = tol
-        root, face = P._cones(bl.mean_cone_distance)
-        rp = P.surface(np.array([-root / (face - root)]), np.array([bl.mean_cone_distance]))[0]
-        r0 = G.from_mesh(P.to_mesh(rp, 0.0), 0.0)
-        q0, _, ok0 = G.surface(*G.coords(r0))
-        if not (ok0[0] and G.inside(*G.coords(r0))[0]):
-            raise ValueError(f"asm = {asm}: the pinion mean point does not lie over the gear flank at phi1 = 0")
-        self.phi2_0 = float((np.arctan2(r0[0, 1], r0[0, 0]) - np.arctan2(q0[0, 1], q0[0, 0]) + np.pi)
-                            % (2 * np.pi) - np.pi)
+        self.phi2_0, rp = reference_gear_angle(P, G, bl, asm)
         # closing senses, fixed once (as the separation TCA does per call)
         g, _, _, self._s2, _ = _gap(G, P.to_mesh(rp, 0.0), np.array([self.phi2_0]))
         self.t_range = (0.0, 1.0)

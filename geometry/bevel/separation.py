@@ -273,6 +273,18 @@ def _label(member: str, x: np.ndarray, m: _Member) -> str:
     return "interior"
 
 
+def reference_gear_angle(P: _Member, G: _Member, bl: BevelBlank, asm: Assembly) -> tuple[float, np.ndarray]:
+    """The gear angle (rad) whose surface passes through the pinion mean point (pitch cone, mean cone distance) at
+    phi1 = 0, to first order, and that pinion point (1, 3) in its body frame."""
+    root, face = P._cones(bl.mean_cone_distance)
+    rp = P.surface(np.array([-root / (face - root)]), np.array([bl.mean_cone_distance]))[0]
+    r0 = G.from_mesh(P.to_mesh(rp, 0.0), 0.0)
+    q0, _, ok0 = G.surface(*G.coords(r0))
+    if not (ok0[0] and G.inside(*G.coords(r0))[0]):
+        raise ValueError(f"asm = {asm}: the pinion mean point does not lie over the gear flank at phi1 = 0")
+    return float((np.arctan2(r0[0, 1], r0[0, 0]) - np.arctan2(q0[0, 1], q0[0, 0]) + np.pi) % (2 * np.pi) - np.pi), rp
+
+
 def separation_tca(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = Assembly(),
                    steps_per_cycle: int = 16, cycles: float = 3.0, grid: tuple[int, int] = (20, 30),
                    delta: float = 0.00632, refine: bool = True) -> SeparationResult:
@@ -312,14 +324,7 @@ def separation_tca(pair: BevelPair, pinion_side: str = "concave", asm: Assembly 
     P = _Member(pair.pinion.flank(pinion_side), bl, "pinion", B1, O1, *grid, 0.5 * clearance)
     G = _Member(pair.gear.flank(gear_side), bl, "gear", B2, O2, *grid, 0.03 * bl.data.module)
     ratio, c1 = bl.pinion.z / bl.gear.z, 2 * np.pi / bl.pinion.z
-    # reference gear angle: the gear surface through the pinion mean point at phi1 = 0 (to first order)
-    root, face = P._cones(bl.mean_cone_distance)
-    rp = P.surface(np.array([-root / (face - root)]), np.array([bl.mean_cone_distance]))[0]
-    r0 = G.from_mesh(P.to_mesh(rp, 0.0), 0.0)
-    q0, _, ok0 = G.surface(*G.coords(r0))
-    if not (ok0[0] and G.inside(*G.coords(r0))[0]):
-        raise ValueError(f"asm = {asm}: the pinion mean point does not lie over the gear flank at phi1 = 0")
-    phi2_0 = float((np.arctan2(r0[0, 1], r0[0, 0]) - np.arctan2(q0[0, 1], q0[0, 0]) + np.pi) % (2 * np.pi) - np.pi)
+    phi2_0, _ = reference_gear_angle(P, G, bl, asm)
     Kd = int(round(0.5 * cycles * steps_per_cycle))
     Ks = Kd + 2 * steps_per_cycle
     phi = np.arange(-Ks, Ks + 1) * c1 / steps_per_cycle
