@@ -159,3 +159,30 @@ def test_search_finds_the_grid_optimum_of_fzg_tip_relief(tmp_path):
     assert rule["deflection_pair_only_um"] < rule["deflection_um"] < rule["deflection_single_pair_um"]
     t = s["timings_s"]
     assert t["search_per_candidate_per_torque_median"] < 2.0
+
+
+def test_corner_start_finds_a_corner_optimum_local_search_misses():
+    """``cobyqa-corners``: on a two-basin function whose global minimum sits at a corner of the box (the shape of
+    the bevel loaded TE p-p over (eta2, m21), measured on a 9 x 9 grid), plain COBYQA from the start stays in the
+    start's basin; the corner start finds the global minimum within the same budget."""
+    from dataclasses import replace as dc_replace
+
+    from ltca.design.driver import search
+    from ltca.design.problem import Evaluation, Measures
+    from ltca.design.schema import Constraints, DesignSpec, Variable
+
+    def f(v):
+        x, y = v["x"], v["y"]
+        return min(2.5 + 4 * ((x - 0.55) ** 2 + (y - 0.15) ** 2), 1.9 + 6 * (x ** 2 + y ** 2))
+
+    def evaluate(values):
+        return Evaluation(values, Measures.__new__(Measures), f(values), 0.0, 0.0)
+
+    spec = DesignSpec("bevel", (Variable("x", 0.0, 1.0, None, None), Variable("y", 0.0, 1.0, None, None)),
+                      "max_te_ptp", (1.0,), Constraints.__new__(Constraints), "cobyqa", 20, None, 5, (), None, None, 0)
+    start = {"x": 0.69, "y": 0.6}
+    local = search(spec, start, evaluate, 8.0)
+    corners = search(dc_replace(spec, optimiser="cobyqa-corners"), start, evaluate, 8.0)
+    assert local.best.objective > 2.4                       # stuck in the start's basin
+    assert corners.best.objective == pytest.approx(1.9, abs=0.02)
+    assert len(corners.evaluations) <= 20

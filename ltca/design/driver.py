@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
+import itertools
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -91,7 +92,12 @@ def search(spec: DesignSpec, start: dict, evaluate, scale: float) -> Search:
     n = len(u0)
     box = Bounds(np.zeros(n), np.ones(n))
     try:
-        if spec.optimiser == "cobyqa":
+        if spec.optimiser == "cobyqa-corners" and n <= 3:
+            # the start, the box's corners and its centre first; then a local search from the best of them
+            pts = [u0] + [np.array(c, float) for c in itertools.product((0.0, 1.0), repeat=n)] + [np.full(n, 0.5)]
+            vals = [f(p) for p in pts]
+            u0 = pts[int(np.argmin(vals))]
+        if spec.optimiser in ("cobyqa", "cobyqa-corners"):
             r = minimize(f, u0, method="COBYQA", bounds=box, options=dict(
                 maxfev=spec.max_evaluations, initial_tr_radius=TR_START, final_tr_radius=TR_END))
         elif spec.optimiser == "powell":

@@ -52,8 +52,10 @@ VARIABLES: dict[str, dict[str, VariableKind]] = {
 }
 #: objectives: the loaded TE peak-to-peak (arcsec) at each of the case's torques, times its weight, then ...
 OBJECTIVES = {"max_te_ptp": "the largest over the torques", "mean_te_ptp": "the mean over the torques"}
-#: derivative-free optimisers of scipy.optimize (minimize methods, or differential_evolution)
-OPTIMISERS = ("cobyqa", "powell", "nelder-mead", "differential-evolution")
+#: derivative-free optimisers of scipy.optimize (minimize methods, or differential_evolution); "cobyqa-corners" first
+#: evaluates the corners of the box and its centre (2^n + 1 candidates, n <= 3) and starts COBYQA from the best (for
+#: objectives with several basins, e.g. the bevel TE peak-to-peak over a mesh cycle)
+OPTIMISERS = ("cobyqa", "cobyqa-corners", "powell", "nelder-mead", "differential-evolution")
 #: edges of a cylindrical pair that may be named in design.constraints.edges (ltca.cylindrical.edges.EDGES)
 CYLINDRICAL_EDGES = ("pinion tip edge", "gear tip edge", "pinion form circle", "face end")
 MEMBERS = ("pinion", "gear", "both")
