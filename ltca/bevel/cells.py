@@ -65,6 +65,7 @@ class PairCells:
     deta: float
     edge: np.ndarray
     rim: np.ndarray = None
+    edge_dist: np.ndarray = None
 
 
 def _evaluate(lm: BevelLoadedModel, phi: float, t: np.ndarray, L: np.ndarray, extend: bool = False):
@@ -238,9 +239,15 @@ def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: f
             edge[m] = lb[m]
             rim |= keep & o & ~in2[sa + dp, sb + dq]          # next to a lattice point on the flank outside the window
         sel = np.flatnonzero(keep)
+        # distance (mm, tangent plane) of each cell to the nearest lattice point off a flank edge that was evaluated
+        off = ~ok & (lab != "")
+        dist = np.full(len(sel), np.inf)
+        if off.any() and len(sel):
+            from scipy.spatial import cKDTree
+            dist = cKDTree(np.stack([xi[off], eta[off]], 1)).query(np.stack([xi[sel], eta[sel]], 1))[0]
         g = PointGaps(*[getattr(res, f)[sl][sel] for f in PointGaps.__dataclass_fields__])
         out.append(PairCells(pm.j, IA[sel], IB[sel], xi[sel], eta[sel], U[sl][sel, 0], U[sl][sel, 1], g, dxi, deta,
-                             edge[sel].astype(str), rim[sel]))
+                             edge[sel].astype(str), rim[sel], dist))
     return out
 
 

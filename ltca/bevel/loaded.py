@@ -36,7 +36,8 @@ class BevelPosition:
     under load;  pair : (n,) tooth pair of each cell;  t, L : pinion flank coordinates;  L2, Rn2 : gear
     axial-section coordinates of the touched point;  L1, Rn1 : pinion axial section;  xi, eta : tangent-plane
     lattice coordinates;  r1 : (n, 3) cell centres on pinion tooth 0, pinion body frame;  area, force, pressure,
-    gap0 : per cell;  edge : (n,) edge the cell borders ('' inside);
+    gap0 : per cell;  edge : (n,) edge the cell borders ('' inside);  edge_dist : (n,) its distance to the nearest
+    point off a flank edge, mm;
     pair_share : {j: share of the gear torque};  root1, root2 : {pinion tooth / gear tooth: max principal
     fillet stress};  ellipse : {j: (lambda1, lambda2, v2)} of the first contact;  torque_residual :
     |sum F v2 - T2| / T2;  pinion_balance : sum F v1 / T1 (1 for conjugate levers);  iterations, residual.
@@ -60,6 +61,7 @@ class BevelPosition:
     pressure: np.ndarray
     gap0: np.ndarray
     edge: np.ndarray
+    edge_dist: np.ndarray
     pair_share: dict
     root1: dict
     root2: dict
@@ -149,7 +151,7 @@ def solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: float
     return BevelPosition(
         float(phi1), float(-(gm + sol.approach - lm.g_ref)), float(-(min(g_min, gm) - lm.g_ref)), float(sol.approach),
         pair, sy["t"], sy["L"], cat("L1"), cat("Rn1"), cat("L2"), cat("Rn2"), np.concatenate([c.xi for c in cells]),
-        np.concatenate([c.eta for c in cells]), cat("r1"), area, F, F / area, g0, edge, shares,
+        np.concatenate([c.eta for c in cells]), cat("r1"), area, F, F / area, g0, edge, np.concatenate([c.edge_dist for c in cells]), shares,
         b1.root_max(W1.T @ F), b2.root_max(W2.T @ F), ellipse, abs(F @ v2 - T2) / T2, float(F @ v1 / torque1),
         sol.iterations, sol.residual)
 

@@ -52,11 +52,14 @@ def edge_margin(lm, res) -> float:
 
 
 def cycle_measures(lm, res) -> dict:
-    """Figures of one loaded cycle: TE peak-to-peak (arcsec), peak interior pressure (MPa, cells at no edge),
+    """Figures of one loaded cycle: TE peak-to-peak (arcsec), peak interior pressure (MPa, beyond the edge band of
+    :func:`ltca.bevel.results.edge_band`),
     largest edge load share of a position, edge margin (mm), the edges loaded."""
     from geometry.bevel.tca import RAD_PER_ARCSEC
     te = np.array([r.te for r in res]) / RAD_PER_ARCSEC
-    inner = max((float(r.pressure[r.edge == ""].max()) for r in res if np.any(r.edge == "")), default=0.0)
+    from ltca.bevel.results import edge_band
+    band = edge_band(lm.pair.blank.data.module)
+    inner = max((float(r.pressure[r.edge_dist > band].max()) for r in res if np.any(r.edge_dist > band)), default=0.0)
     share = max(float(r.force[r.edge != ""].sum() / max(r.force.sum(), 1e-300)) for r in res)
     edges = sorted({e for r in res for e in r.edge_load()})
     return dict(te_ptp=float(np.ptp(te)), pressure=inner, edge_share=share, margin=edge_margin(lm, res),

@@ -24,7 +24,7 @@ from ..bevel.analysis import analyse_torque, build_pair, cycle_positions
 from ..bevel.case import load_bevel_case
 from ..bevel.loaded import solve_position
 from ..bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
-from ..bevel.results import fit_ellipse, position_arrays
+from ..bevel.results import edge_band, fit_ellipse, position_arrays
 from ..outputs import write_json_atomic
 
 __all__ = ["hertz_check", "vh_table", "run_bevel_validate", "run_bevel_convergence", "run_bevel_bench"]
@@ -122,7 +122,7 @@ def run_bevel_validate(case_path: str, out: str, progress: bool = True) -> int:
 
 def _cycle_figures(lm, n: int, torque_nm: float) -> dict:
     res = analyse_torque(lm, cycle_positions(n, lm.pair.blank.pinion.z), torque_nm)
-    a = position_arrays(res, torque_nm)
+    a = position_arrays(res, torque_nm, edge_band(lm.pair.blank.data.module))
     return dict(te_pp=float(np.ptp(a["te"])), te_mean=float(np.mean(a["te"])), p_int=float(a["pmax_interior"].max()),
                 share=float(a["share"].max()), root=float(np.nanmax(a["root1"])),
                 stiffness=float(np.nanmean(a["stiffness"])))
