@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 from .errors import CaseError, ConvergenceError
 
@@ -77,15 +76,6 @@ def _cmd_convergence(a: argparse.Namespace) -> int:
     return 0
 
 
-def _is_bevel(case: str) -> bool:
-    """The case file has a [bevel] table (the bevel CalculiX check, :mod:`ltca.verify.bevel_check`)."""
-    import tomllib
-    try:
-        return "bevel" in tomllib.loads(Path(case).read_text())
-    except (OSError, tomllib.TOMLDecodeError):
-        return False
-
-
 def _cmd_validate(a: argparse.Namespace) -> int:
     if a.reference == "calculix-whole":
         from fem.calculix.run import CcxNotFound
@@ -94,18 +84,6 @@ def _cmd_validate(a: argparse.Namespace) -> int:
             return run_whole_validation(a.case, a.positions, a.out, band_um=a.band,
                                         refine=1 if a.refine is None else a.refine, fidelity=a.fidelity,
                                         freeze=a.freeze, command=command_line(sys.argv[1:]), progress=not a.quiet)
-        except CcxNotFound as exc:
-            print(f"ltca validate: {exc}", file=sys.stderr)
-            return 2
-    if a.reference == "calculix" and _is_bevel(a.case):
-        from fem.calculix.run import CcxNotFound
-        from .verify.bevel_check import run_bevel_validation
-        from .verify.whole_check import command_line
-        try:
-            return run_bevel_validation(a.case, tuple(a.positions or (0.0, 0.4)), a.out,
-                                        refine=2 if a.refine is None else a.refine, level=a.level,
-                                        h0=1e-3 * (a.band or 250.0), freeze=a.freeze,
-                                        command=command_line(sys.argv[1:]), progress=not a.quiet)
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
             return 2
@@ -294,8 +272,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "(15-20 min per position on 2 cores)")
     v.add_argument("--case", default="cases/fzg_c14.toml", help="case for --reference calculix")
     v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
-                   help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9); a "
-                        "[bevel] case: pinion angles in mesh cycles from the mean point (default 0 0.4)")
+                   help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9)")
     v.add_argument("--refine", type=int, default=None,
                    help="CalculiX contact-band refinements at the first position (its convergence check; default 2, "
                         "calculix-whole 1)")
@@ -313,8 +290,7 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--fidelity", choices=["coarse", "default", "fine"], default="default",
                    help="our fidelity for --reference calculix-whole")
     v.add_argument("--freeze", metavar="JSON",
-                   help="calculix-whole and a [bevel] case's calculix: write the CalculiX results as a frozen "
-                        "reference with provenance")
+                   help="calculix-whole: write the CalculiX results as a frozen reference with provenance")
     v.add_argument("--quiet", action="store_true", help="no progress output")
     v.set_defaults(func=_cmd_validate)
 

@@ -26,7 +26,7 @@ def _rec() -> dict:
 
 
 def _ours(fraction: float) -> dict:
-    from ltca.verify.bevel_check import bevel_model, ours_at
+    from ltca.verify.bevel_calculix import bevel_model, ours_at
     if "lm" not in _LM:
         case, lm, _ = bevel_model(str(ROOT / _rec()["case"]))
         _LM["lm"] = lm
@@ -72,7 +72,7 @@ def test_regenerated_reference_matches_stored(tmp_path):
         pytest.skip("CalculiX (ccx) missing")
     import numpy as np
     from ltca.verify.bevel_ccx import BevelCcxSettings, solve_bevel_ccx
-    from ltca.verify.bevel_check import bevel_model
+    from ltca.verify.bevel_calculix import bevel_model
     rec = _rec()
     _, lm, _ = bevel_model(str(ROOT / rec["case"]))
     first = rec["refinement"][0]
