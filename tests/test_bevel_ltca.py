@@ -169,3 +169,18 @@ def test_bevel_ltca_run_writes_outputs(tmp_path):
     for f in ("te.png", "bearing_pattern.png", "load_sharing.png", "bearing_pattern_175Nm.vtu", "summary.json"):
         assert (tmp_path / f).exists()
     assert json.loads((tmp_path / "summary.json").read_text())["case"]
+
+
+def test_flat_te_pinion_converges_with_edge_contact(tmp_path):
+    """A pinion synthesised with m21 near 0 (TE magnitude 1 arcsec, an eighth of the seed's): no parabola to absorb
+    the transfer, so the pairs hand over at the flank edges; every position converges and the edges are named."""
+    from ltca.bevel.analysis import run_bevel_ltca
+    text = CASE.read_text().replace("te_magnitude_arcsec = 8.25", "te_magnitude_arcsec = 1.0")
+    case = tmp_path / "flat_te.toml"
+    case.write_text(text)
+    s = run_bevel_ltca(str(case), out=str(tmp_path / "out"), positions=5, fidelity="coarse", torques=[350.0],
+                       progress=False)
+    t = s["torques"]["350"]
+    assert t["te_pp_unloaded_arcsec"] < 1.2
+    assert t["torque_residual_max"] < 1e-6
+    assert t["edge_contact"] and t["edge_locations"]

@@ -21,7 +21,17 @@ import numpy as np
 from .separation import _gap, _Member, _speed
 from .tca import Assembly, BevelPair, mesh_frames, to_pitch_coords
 
-__all__ = ["PointGaps", "MeshGaps"]
+__all__ = ["PointGaps", "MeshGaps", "depth_fraction"]
+
+
+def depth_fraction(mb, blank, off: float, L: np.ndarray, Rn: np.ndarray) -> np.ndarray:
+    """Depth fraction of axial-section points (L, Rn) (mm) on a member's flank grid whose lowest row lies ``off``
+    (mm) above the root cone and whose top row is the face cone (:func:`geometry.bevel.generation.axial_grid`);
+    ``mb`` is the member's :class:`geometry.bevel.blank.MemberBlank`, ``blank`` the pair's blank."""
+    A0 = blank.outer_cone_distance
+    root = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle)) + off
+    face = mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
+    return (Rn - root) / (face - root)
 
 
 @dataclass(frozen=True)
@@ -32,7 +42,8 @@ class PointGaps:
     v2 : gear normal speed at the gear point, mm/rad (lever of the gear torque);
     v1 : pinion normal speed at the pinion point, mm/rad (lever of the pinion torque);
     r1, n1 : pinion point and outward normal, pinion body frame (tooth 0), mm;
-    L1, Rn1 : pinion point in the pinion axial section, mm;  L2, Rn2 : gear point in the gear axial section;
+    L1, Rn1 : pinion point in the pinion axial section, mm;  L2, Rn2 : the point in the gear axial section (also
+    where it is off the gear flank);
     ok : the point lies on the pinion flank and over the gear flank, and Newton converged.
     """
     g: np.ndarray
@@ -117,6 +128,8 @@ class MeshGaps:
         ok = ok1 & ok2 & P.inside(t, L)
         g = np.where(ok | (extend & ok1 & np.isfinite(g)), g, np.inf)
         L1, Rn1 = to_pitch_coords(r1, self.pair.blank.pinion.pitch_angle)
-        L2, Rn2 = to_pitch_coords(q, self.pair.blank.gear.pitch_angle)
+        # the gear surface point shares the pinion point's axial-section place: take it from the pinion point, so
+        # that points off the gear flank have their place too (for edge labels)
+        L2, Rn2 = to_pitch_coords(G.from_mesh(r_h, ang2), self.pair.blank.gear.pitch_angle)
         out = [g, v2, _speed(r1, n1), r1, n1, L1, Rn1, L2, Rn2, ok]
         return PointGaps(*[a.reshape(shp + a.shape[1:]) for a in out])

@@ -4,7 +4,6 @@ every torque of the case (working flank for positive, coast flank for negative p
 """
 from __future__ import annotations
 
-import json
 import sys
 import time
 from pathlib import Path
@@ -107,5 +106,15 @@ def run_bevel_ltca(case_path: str, out: str = "out", positions: int | None = Non
         timings[f"torque_{T:g}"] = time.perf_counter() - t1
     from .results import write_outputs
     summary = write_outputs(d, case, pair, asm, fid, runs, tq, timings)
-    print(json.dumps(summary["torques"], indent=1))
+    print(f"Spiral bevel LTCA: {case['name']} ({fid.name}, {n} positions per cycle, assembly E {asm.E:g} P {asm.P:g} "
+          f"G {asm.G:g} mm)")
+    print(f"{'torque N m':>10s} {'flank':8s} {'TE p-p loaded':>13s} {'unloaded':>9s} {'p int MPa':>10s} "
+          f"{'p edge MPa':>10s} {'max share':>9s} {'root MPa':>9s} {'k N/um':>7s}  edges")
+    for T, t in summary["torques"].items():
+        print(f"{float(T):10g} {t['flank']:8s} {t['te_pp_loaded_arcsec']:13.2f} {t['te_pp_unloaded_arcsec']:9.2f} "
+              f"{t['peak_pressure_interior_mpa']:10.0f} {t['peak_pressure_mpa']:10.0f} {t['max_pair_share']:9.3f} "
+              f"{t['root_stress_pinion_mpa']:9.0f} {t['mesh_stiffness_mean_n_per_um']:7.0f}  "
+              f"{', '.join(t['edge_locations']) or '-'}")
+    print("TE in arcsec; p int: peak pressure away from the flank edges (its convergence: ltca convergence); "
+          "p edge: with the edge cells (singular at a sharp edge, grows as the cells shrink)")
     return summary

@@ -16,7 +16,7 @@ from geometry.bevel.tca import RAD_PER_ARCSEC
 from ..errors import CaseError
 from ..validation import DesignError, Int, List, Num, Str, Table, check_kind, check_table
 
-__all__ = ["load_bevel_case"]
+__all__ = ["load_bevel_case", "bevel_case_from_data"]
 
 # the bevel kind in the one validation layer (ltca.validation); ranges are those the cradle model and the
 # seed-000 synthesis are known to handle (outside them the Newton solves of generation and TCA lose the flank)
@@ -62,8 +62,12 @@ def load_bevel_case(case_path: str | Path) -> dict:
     """Read and validate a bevel case; returns the basic data, the targets and the blank offset."""
     from ..case import read_toml
     path = Path(case_path)
-    data = read_toml(path)
-    f = str(path)
+    return bevel_case_from_data(read_toml(path), str(path), path.stem)
+
+
+def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") -> dict:
+    """:func:`load_bevel_case` of a case already read from TOML (``data`` without tables of other commands, e.g.
+    ``[design]``); ``f`` names the file in messages, ``stem`` is the name when [case] gives none."""
     check_kind(data, "bevel", f)
     torques = _torques(data, f)
     c = check_table(data, _CASE, "", f)
@@ -86,7 +90,7 @@ def load_bevel_case(case_path: str | Path) -> dict:
     except ValueError as exc:
         raise DesignError(f"bevel blank: {exc}", ("bevel.face_width_mm", "bevel.module_mm", "bevel.pinion_teeth",
                                                   "bevel.gear_teeth", "bevel.cutter_radius_mm"), file=f) from None
-    name = c["case"]["name"] or path.stem
+    name = c["case"]["name"] or stem
     asm = c.get("assembly") or {}
     mat = c.get("material") or {}
     an = c.get("analysis") or {}
@@ -104,7 +108,8 @@ def _torques(data: dict, f: str) -> tuple[float, ...]:
     if not isinstance(load, dict) or "torque_nm" not in load:
         return ()
     v = load["torque_nm"]
-    out = List(_TORQUE, 1, 20).check(v, "load.torque_nm", f) if isinstance(v, list) else [_TORQUE.check(v, "load.torque_nm", f)]
+    out = (List(_TORQUE, 1, 20).check(v, "load.torque_nm", f) if isinstance(v, list)
+           else [_TORQUE.check(v, "load.torque_nm", f)])
     if any(x == 0 for x in out):
         raise CaseError("load.torque_nm", v, "non-zero torques (the sign picks the flank)", f)
     if len(set(out)) != len(out):

@@ -19,7 +19,8 @@ import numpy as np
 
 from fem.hertz import elliptic_hertz
 
-from .loaded_model import BevelLoadedModel
+from .model import BevelLoadedModel
+
 
 __all__ = ["PairMinimum", "PairCells", "pair_minimum", "pair_minima", "pair_cells", "cells_of", "window"]
 
@@ -49,7 +50,9 @@ class PairMinimum:
 class PairCells:
     """Cells of one pair: lattice indices (ia along the major, ib across), tangent coordinates (xi, eta, mm),
     flank coordinates (t, L), the gaps (:class:`geometry.bevel.gaps.PointGaps`), cell sizes (dxi, deta, mm) and
-    the dropped lattice points' edge labels (``edge``: per cell, the edge it borders or '')."""
+    the dropped lattice points' edge labels (``edge``: per cell, the edge it borders or ''), and ``rim``: the cell
+    borders
+    the window on the flank (a loaded rim cell means the window was too small)."""
     j: int
     ia: np.ndarray
     ib: np.ndarray
@@ -61,6 +64,7 @@ class PairCells:
     dxi: float
     deta: float
     edge: np.ndarray
+    rim: np.ndarray = None
 
 
 def _evaluate(lm: BevelLoadedModel, phi: float, t: np.ndarray, L: np.ndarray, extend: bool = False):
@@ -156,16 +160,17 @@ def pair_minima(lm: BevelLoadedModel, phi1: float, js, scan: tuple[int, int] = (
     return out
 
 
-def window(lm: BevelLoadedModel, pm: PairMinimum, load2: float) -> tuple[float, float]:
-    """Window semi-axes (along the major, across the minor axis), mm, for the gear torque ``load2`` (N mm)."""
+def window(lm: BevelLoadedModel, pm: PairMinimum, load2: float, widen: float = 1.0) -> tuple[float, float]:
+    """Window semi-axes (along the major, across the minor axis), mm, for the gear torque ``load2`` (N mm); ``widen``
+    multiplies the window approach (a pair whose loaded cells reached the window's rim)."""
     bl = lm.pair.blank
     F = load2 / pm.v2
     cap = 0.75 * bl.face_width
     lam = np.maximum(pm.lam, [2 * 1e-3 / cap ** 2, 1e-3])
     hz = elliptic_hertz(F, 0.5 * lam[0], 0.5 * lam[1], lm.bodies.young, lm.bodies.poisson)
     ka, kb = lm.fid.window
-    a = min(np.sqrt(2 * ka * hz.delta / lam[0]), cap)
-    b = min(np.sqrt(2 * kb * hz.delta / lam[1]), 0.5 * bl.whole_depth)
+    a = min(np.sqrt(2 * ka * widen * hz.delta / lam[0]), cap)
+    b = min(np.sqrt(2 * kb * widen * hz.delta / lam[1]), 0.5 * bl.whole_depth)
     return float(a), float(b)
 
 
@@ -174,13 +179,15 @@ def pair_cells(lm: BevelLoadedModel, phi1: float, pm: PairMinimum, load2: float)
     return cells_of(lm, phi1, [pm], load2)[0]
 
 
-def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: float) -> list[PairCells]:
-    """The cells of several pairs at ``phi1``; each gap evaluation covers all pairs at once."""
+def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: float,
+             widen: dict | None = None) -> list[PairCells]:
+    """The cells of several pairs at ``phi1``; each gap evaluation covers all pairs at once; ``widen`` {pair j:
+    factor} enlarges the windows of pairs whose loaded cells reached the rim."""
     from geometry.bevel.gaps import PointGaps
     na, nb = lm.fid.cells
     lat, U, Y, phi, P0, E, Bi = [], [], [], [], [], [], []
     for pm in pms:
-        a, b = window(lm, pm, load2)
+        a, b = window(lm, pm, load2, (widen or {}).get(pm.j, 1.0))
         dxi, deta = 2 * a / na, 2 * b / nb
         ka, kb = (na - 1) // 2 + 1, (nb - 1) // 2 + 1
         IA, IB = np.meshgrid(np.arange(-ka, ka + 1), np.arange(-kb, kb + 1), indexing="ij")
@@ -221,21 +228,26 @@ def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: f
         ok2 = np.ones((sa.max() + 2, sb.max() + 2), bool)
         lab2 = np.full(ok2.shape, "", dtype=object)
         ok2[sa, sb], lab2[sa, sb] = ok, lab
+        in2 = np.zeros(ok2.shape, bool)
+        in2[sa, sb] = inside
         edge = np.full(n, "", dtype=object)
+        rim = np.zeros(n, bool)
         for dp, dq in ((1, 0), (-1, 0), (0, 1), (0, -1)):
             o, lb = ok2[sa + dp, sb + dq], lab2[sa + dp, sb + dq]
             m = keep & (edge == "") & ~o & (lb != "")
             edge[m] = lb[m]
+            rim |= keep & o & ~in2[sa + dp, sb + dq]          # next to a lattice point on the flank outside the window
         sel = np.flatnonzero(keep)
         g = PointGaps(*[getattr(res, f)[sl][sel] for f in PointGaps.__dataclass_fields__])
         out.append(PairCells(pm.j, IA[sel], IB[sel], xi[sel], eta[sel], U[sl][sel, 0], U[sl][sel, 1], g, dxi, deta,
-                             edge[sel].astype(str)))
+                             edge[sel].astype(str), rim[sel]))
     return out
 
 
 def _edge_labels(lm: BevelLoadedModel, U: np.ndarray, res, ok: np.ndarray) -> np.ndarray:
-    """Where a dropped lattice point lies: off the pinion flank (``pinion top/root``, ``toe``, ``heel``) or
-    beyond the gear flank (``gear top`` / ``gear root``)."""
+    """Where a dropped lattice point lies: off the pinion flank (``pinion top/root``, ``toe``, ``heel``) or off the
+    gear flank (its ``toe``/``heel``, ``gear top`` beyond the face cone, ``gear root`` below the flank grid's lowest
+    row near the root cone); '' where Newton failed on the flank itself."""
     t0, t1 = lm.gaps.t_range
     L0, L1 = lm.gaps.L_range
     lab = np.full(len(U), "", dtype=object)
@@ -246,8 +258,11 @@ def _edge_labels(lm: BevelLoadedModel, U: np.ndarray, res, ok: np.ndarray) -> np
     lab[bad & (U[:, 1] > L1)] = "heel"
     rest = bad & (lab == "")
     if rest.any():
-        from .loaded_model import body_t
+        from geometry.bevel.gaps import depth_fraction as body_t
         bl = lm.pair.blank
-        t2 = body_t(bl.gear, bl, 0.0, res.L2[rest], res.Rn2[rest])
-        lab[np.flatnonzero(rest)] = np.where(t2 > 0.5, "gear top", "gear root")
+        L2, Rn2 = res.L2[rest], res.Rn2[rest]
+        t2 = body_t(bl.gear, bl, lm.gaps.G.off, L2, Rn2)
+        lab[np.flatnonzero(rest)] = np.select(
+            [L2 < bl.inner_cone_distance, L2 > bl.outer_cone_distance, t2 > 1.0, t2 < 0.0],
+            ["toe", "heel", "gear top", "gear root"], "")
     return lab

@@ -35,7 +35,8 @@ class BevelPosition:
     phi1 : pinion angle;  te, te0 : loaded and unloaded TE (rad, driven sense);  theta : extra gear rotation
     under load;  pair : (n,) tooth pair of each cell;  t, L : pinion flank coordinates;  L2, Rn2 : gear
     axial-section coordinates of the touched point;  L1, Rn1 : pinion axial section;  xi, eta : tangent-plane
-    lattice coordinates;  r1 : (n, 3) cell centres on pinion tooth 0, pinion body frame;  area, force, pressure, gap0 : per cell;  edge : (n,) edge the cell borders ('' inside);
+    lattice coordinates;  r1 : (n, 3) cell centres on pinion tooth 0, pinion body frame;  area, force, pressure,
+    gap0 : per cell;  edge : (n,) edge the cell borders ('' inside);
     pair_share : {j: share of the gear torque};  root1, root2 : {pinion tooth / gear tooth: max principal
     fillet stress};  ellipse : {j: (lambda1, lambda2, v2)} of the first contact;  torque_residual :
     |sum F v2 - T2| / T2;  pinion_balance : sum F v1 / T1 (1 for conjugate levers);  iterations, residual.
@@ -116,8 +117,9 @@ def solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: float
                                                                 np.array([first.L]), extend=True))
     bend = float(T2 / first.v2 * ((w1 @ (w1 @ b1.C).T)[0, 0] + (w2 @ (w2 @ b2.C).T)[0, 0]))
     use = [m for m in mins if m is first or (m.g - g_min) * m.v2 <= 5.0 * _hertz_delta(lm, m, T2) + 3.0 * abs(bend)]
-    for _ in range(len(mins)):
-        cells = [c for c in cells_of(lm, phi1, use, T2) if len(c.t)]
+    widen: dict[int, float] = {}
+    for _ in range(len(mins) + 6):
+        cells = [c for c in cells_of(lm, phi1, use, T2, widen) if len(c.t)]
         sy = _system(lm, cells)
         try:
             sol = solve_contact(sy["C"], (sy["g"] - sy["gm"]) * sy["v2"], sy["v2"], T2, tol=tol)
@@ -125,7 +127,15 @@ def solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: float
             raise ConvergenceError(f"bevel contact at phi1 = {phi1:.5f} rad, pinion torque {torque1 / 1e3:.4g} N m: "
                                    f"{exc}") from None
         more = [m for m in mins if m not in use and m.g < sy["gm"] + sol.approach]
-        if not more:
+        # a pair whose loaded cells reach its window's rim on the flank gets a wider window
+        i0, grown = 0, False
+        for c in cells:
+            f = sol.force[i0:i0 + len(c.t)]
+            i0 += len(c.t)
+            if np.any(f[c.rim] > 1e-6 * max(f.max(), 1e-300)) and widen.get(c.j, 1.0) < 40:
+                widen[c.j] = widen.get(c.j, 1.0) * 1.8
+                grown = True
+        if not more and not grown:
             break
         use += more
     gm, pair, v2, v1, area = sy["gm"], sy["pair"], sy["v2"], sy["v1"], sy["area"]

@@ -7,93 +7,21 @@ evaluator (:class:`geometry.bevel.gaps.MeshGaps`) is rebuilt per assembly.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 import numpy as np
 
 from fem.bevel_compliance import BevelComplianceSpec, bevel_compliance
-from fem.compliance import BodyCompliance
 from fem.solids.bevel_body import convex_shift
-from geometry.bevel.blank import BevelBlank, MemberBlank
 from geometry.bevel.gaps import MeshGaps
+from geometry.bevel.gaps import depth_fraction as body_t
 from geometry.bevel.generation import generate_flank
 from geometry.bevel.tca import Assembly, BevelPair
 
-__all__ = ["BevelFidelity", "BevelBodies", "BevelLoadedModel", "prepare_bodies", "loaded_model", "body_t"]
+from .model import LOADED, MESHED, BevelBodies, BevelFidelity, BevelLoadedModel
 
-#: teeth of each member that can carry load (pair j: pinion tooth +j, gear tooth -j) and the meshed ones
-LOADED = (-1, 0, 1)
-MESHED = (-2, -1, 0, 1, 2)
-
-
-@dataclass(frozen=True)
-class BevelFidelity:
-    """Model size: compliance grid, body mesh divisions, contact cells (see the module docstrings).
-
-    grid : (n_t, n_L) compliance grid per loaded flank;  divisions : body mesh (n_L, n_t, n_s, n_g, n_rim,
-    n_far);  depth : read depth of the regular part, mm;  cells : (along the major, across the minor axis)
-    cells over the window of each pair;  window : (major, minor) window approach as multiples of the Hertz
-    approach of the whole load on one pair;  near_field : add the half-space near field at the cells.
-    """
-    name: str = "default"
-    grid: tuple[int, int] = (9, 13)
-    divisions: tuple[int, int, int, int, int, int] = (14, 7, 5, 3, 3, 16)
-    depth: float = 0.5
-    cells: tuple[int, int] = (41, 21)
-    window: tuple[float, float] = (3.0, 1.6)
-    near_field: bool = True
-
-    @classmethod
-    def named(cls, name: str) -> "BevelFidelity":
-        """``coarse``, ``default`` or ``fine`` (the convergence ladder)."""
-        table = {"coarse": cls("coarse", (7, 9), (10, 5, 4, 3, 2, 12), 0.5, (31, 15)),
-                 "default": cls(),
-                 "fine": cls("fine", (11, 17), (20, 10, 7, 4, 4, 24), 0.5, (51, 27))}
-        if name not in table:
-            raise ValueError(f"fidelity = {name!r}: allowed {sorted(table)}")
-        return table[name]
-
-
-@dataclass
-class BevelBodies:
-    """Compliance of both members for one flank pair (pinion ``side``), reusable over assemblies and torques."""
-    side: str
-    body1: BodyCompliance
-    body2: BodyCompliance
-    off1: float
-    off2: float
-    fid: BevelFidelity
-    young: float
-    poisson: float
-    timings: dict = field(default_factory=dict)
-
-
-@dataclass
-class BevelLoadedModel:
-    """One flank pair in one assembly, ready for :func:`ltca.bevel.loaded.solve_position`."""
-    pair: BevelPair
-    bodies: BevelBodies
-    gaps: MeshGaps
-    asm: Assembly
-    g_ref: float          # gear rotation closing the first contact at phi1 = 0 (TE reference), rad
-
-    @property
-    def side(self) -> str:
-        return self.bodies.side
-
-    @property
-    def fid(self) -> BevelFidelity:
-        return self.bodies.fid
-
-
-def body_t(mb: MemberBlank, blank: BevelBlank, off: float, L: np.ndarray, Rn: np.ndarray) -> np.ndarray:
-    """Depth fraction of axial-section points (L, Rn) on a member's body flank grid (lowest row ``off`` above the
-    root cone, top row the face cone), :func:`geometry.bevel.generation.axial_grid`."""
-    A0 = blank.outer_cone_distance
-    root = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle)) + off
-    face = mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
-    return (Rn - root) / (face - root)
-
+__all__ = ["BevelFidelity", "BevelBodies", "BevelLoadedModel", "prepare_bodies", "loaded_model", "body_t", "LOADED",
+           "MESHED"]
 
 def _member(pair: BevelPair, member: str, side: str, fid: BevelFidelity, E: float, nu: float, cache_dir, say):
     bl = pair.blank

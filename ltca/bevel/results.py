@@ -68,7 +68,8 @@ def position_arrays(res: list[BevelPosition], torque_nm: float) -> dict[str, np.
     k = np.where((F > 0) & (th > 0), F * F / np.maximum(th * T2, 1e-300) / 1e3, np.nan)
     return dict(te=te, te0=te0, pmax=pmax, pmax_interior=inner, edge_fraction=edge_frac, share=share,
                 root1=root1, root2=root2, stiffness=k,
-                residual=np.array([r.torque_residual for r in res]), pinion_balance=np.array([r.pinion_balance for r in res]))
+                residual=np.array([r.torque_residual for r in res]),
+                pinion_balance=np.array([r.pinion_balance for r in res]))
 
 
 def pattern_grid(pair, res: list[BevelPosition]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -118,7 +119,8 @@ def write_outputs(d: Path, case: dict, pair, asm, fid, runs: dict, torques, timi
             if T in rr:
                 per[T] = position_arrays(rr[T], T)
                 patterns[T] = pattern_grid(pair, rr[T])
-                outlines[T] = [e for r in rr[T][::max(len(rr[T]) // 6, 1)] for j in LOADED if (e := _ellipse_outline(r, j)) is not None]
+                every = max(len(rr[T]) // 6, 1)
+                outlines[T] = [e for r in rr[T][::every] for j in LOADED if (e := _ellipse_outline(r, j)) is not None]
                 _write_vtu(d / f"bearing_pattern_{T:g}Nm.vtu", rr[T])
     tq = list(torques)
     first = next(iter(runs.values()))
@@ -152,7 +154,14 @@ def write_outputs(d: Path, case: dict, pair, asm, fid, runs: dict, torques, timi
     plots = plot_all(d, case["name"], pair, ds, per, patterns, outlines, paths, runs)
     summary = dict(case=case["name"], fidelity=fid.name,
                    assembly=dict(E_mm=asm.E, P_mm=asm.P, G_mm=asm.G, sigma_deg=float(np.rad2deg(asm.d_sigma))),
-                   torques={f"{T:g}": _torque_summary(per[T], runs, T) for T in tq}, timings_s=timings, plots=plots)
+                   torques={f"{T:g}": _torque_summary(per[T], runs, T) for T in tq}, timings_s=timings, plots=plots,
+                   notes=dict(peak_pressure_mpa="with the cells at a flank edge: singular at a sharp edge and "
+                                                "mesh-dependent (grows as the cells shrink); "
+                                                "peak_pressure_interior_mpa is the figure away from the edges "
+                                                "(ltca convergence gives its mesh ladder)",
+                              mesh_stiffness="secant: total normal force over the elastic approach at the "
+                                             "torque-weighted gear lever, mean over the cycle",
+                              te="driven sense, arcsec; negative: the gear lags"))
     write_json_atomic(d / "summary.json", summary)
     return summary
 

@@ -212,6 +212,9 @@ def make_backend(kind: str, data: dict, spec: DesignSpec, file: str | None = Non
     if kind == "cylindrical":
         from .cylindrical import CylindricalBackend
         return CylindricalBackend(data, spec, file, progress)
+    if kind == "bevel":
+        from .bevel import BevelBackend
+        return BevelBackend(data, spec, file, progress)
     raise CaseError("design", "[table]", f"a cylindrical case: the {kind} design backend (synthesis, TCA and LTCA "
                     "per candidate) is not available yet", file)
 

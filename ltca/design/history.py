@@ -82,14 +82,18 @@ class History:
         rec = {"key": key, "n": len(self.records), "role": role, "values": ev.values,
                "te_ptp_arcsec": list(m.te_ptp_arcsec), "flank_pressure_mpa": list(m.flank_pressure_mpa),
                "edge_share": m.edge_share, "objective": ev.objective, "pressure_violation": ev.pressure_violation,
-               "edge_violation": ev.edge_violation, "feasible": ev.feasible, "seconds": m.seconds, "cycles": m.cycles}
+               "edge_violation": ev.edge_violation, "feasible": ev.feasible, "seconds": m.seconds, "cycles": m.cycles,
+               "edge_margin_mm": m.edge_margin_mm, "failure": m.failure}
         self._keep(rec)
         self._write()
         return ev
 
     def _evaluation(self, rec: dict) -> Evaluation:
-        m = Measures(tuple(rec["te_ptp_arcsec"]), tuple(rec["flank_pressure_mpa"]), rec["edge_share"],
-                     rec["seconds"], rec["cycles"])
+        nan = float("nan")
+        margin = rec.get("edge_margin_mm")
+        m = Measures(tuple(nan if x is None else x for x in rec["te_ptp_arcsec"]),
+                     tuple(nan if x is None else x for x in rec["flank_pressure_mpa"]), rec["edge_share"],
+                     rec["seconds"], rec["cycles"], float("inf") if margin is None else margin, rec.get("failure", ""))
         return score(self.spec, rec["values"], m)
 
     def curve(self, values: dict, torques_nm, compute) -> list[float]:

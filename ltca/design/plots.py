@@ -57,7 +57,9 @@ def plot_map(grid: dict | None, spec: DesignSpec, base: Evaluation, start: Evalu
             ax.contourf(x, y, infeasible.T.astype(float), levels=[0.5, 1.5], colors="none", hatches=["//"])
         pts = np.array([[e.values[a], e.values[b]] for e in found.evaluations])
         ax.plot(pts[:, 0], pts[:, 1], ".-", color="w", lw=0.6, ms=4, alpha=0.8, label="search")
-        for ev, mk, name in ((base, "X", "baseline"), (start, "^", "start"), (best, "*", "optimum")):
+        base_name = "baseline (case's design)" if spec.kind != "bevel" else \
+            "baseline: case's design ({:g} / {:g})".format(*(base.values[n] for n in (a, b)))
+        for ev, mk, name in ((base, "X", base_name), (start, "^", "start"), (best, "*", "optimum")):
             ax.plot(ev.values[a], ev.values[b], mk, ms=12 if mk == "*" else 9, mec="k", label=name)
         ax.set(xlabel=a, ylabel=b, title=label, xlim=(x[0], x[-1]), ylim=(y[0], y[-1]))
     axes[0][0].legend(fontsize=8, loc="best")

@@ -27,6 +27,8 @@ The driver (:mod:`ltca.design.driver`) picks the backend of a case and only talk
 """
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 from .schema import DesignSpec
@@ -55,12 +57,20 @@ class Measures:
         Wall time of the candidate, s.
     cycles : int
         Contact cycles solved (one per torque, two more for the misalignment check).
+    edge_margin_mm : float
+        Bevel: smallest distance of the loaded contact cells to the toe and the heel at the top torque over the
+        tolerance box, mm (inf: not measured).
+    failure : str
+        Bevel: why the geometry cannot make the design (synthesis, machine settings, undercut, no contact); ''
+        for a real design. A failed candidate has NaN measures and is infeasible.
     """
     te_ptp_arcsec: tuple[float, ...]
     flank_pressure_mpa: tuple[float, ...]
     edge_share: float
     seconds: float
     cycles: int
+    edge_margin_mm: float = math.inf
+    failure: str = ""
 
 
 @dataclass(frozen=True)
@@ -71,10 +81,11 @@ class Evaluation:
     objective: float
     pressure_violation: float
     edge_violation: float
+    design_violation: float = 0.0
 
     @property
     def violation(self) -> float:
-        return self.pressure_violation + self.edge_violation
+        return self.pressure_violation + self.edge_violation + self.design_violation
 
     @property
     def feasible(self) -> bool:
@@ -84,6 +95,8 @@ class Evaluation:
         """The value the optimiser minimises: the objective, plus a penalty when infeasible (see PENALTY)."""
         if self.feasible:
             return self.objective
+        if not math.isfinite(self.objective):           # a design the geometry cannot make
+            return 2.0 * PENALTY * scale * (1.0 + 10.0 * self.violation)
         return self.objective + PENALTY * scale * (1.0 + 10.0 * self.violation)
 
 
@@ -92,11 +105,21 @@ def score(spec: DesignSpec, values: dict, m: Measures) -> Evaluation:
 
     The objective is the loaded TE peak-to-peak at each torque times its weight, the largest
     (``max_te_ptp``) or the weighted mean (``mean_te_ptp``). The pressure violation is the relative excess of
-    the largest peak flank pressure over the limit; the edge violation is the edge load share (none allowed)."""
+    the largest peak flank pressure over the limit; the edge violation is the edge load share (none allowed).
+    Bevel: the shortfall of the edge margin (toe, heel) relative to the required one (at least 0.1 mm) and the
+    edge load share above ``max_edge_share``, both at the top torque over the tolerance box. A design the geometry cannot make (``failure``)
+    has the design violation 1 and a NaN objective."""
+    if m.failure:
+        return Evaluation(dict(values), m, math.nan, 0.0, 0.0, 1.0)
     w = spec.weights
     te = [wi * x for wi, x in zip(w, m.te_ptp_arcsec)]
     objective = max(te) if spec.objective == "max_te_ptp" else sum(te) / sum(w)
     lim = spec.constraints.max_flank_pressure_mpa
     p_v = max(0.0, max(m.flank_pressure_mpa) / lim - 1.0) if lim is not None else 0.0
     e_v = m.edge_share if spec.constraints.misalignment_um > 0 else 0.0
+    req, lim_share = spec.constraints.edge_margin_mm, spec.constraints.max_edge_share
+    if req is not None:
+        e_v += max(0.0, req - m.edge_margin_mm) / max(req, 0.1)
+    if lim_share is not None:
+        e_v += max(0.0, m.edge_share - lim_share)
     return Evaluation(dict(values), m, float(objective), float(p_v), float(e_v))

@@ -55,6 +55,8 @@ def _toml(path: Path, data: dict) -> None:
 
 def _full_run(path: Path, out: Path, backend) -> dict:
     """``ltca run`` of a design's case file (compliance computed afresh), its console output kept out."""
+    if hasattr(backend, "full_run"):
+        return backend.full_run(path, out)
     from ..cylindrical.run import run_case
     with contextlib.redirect_stdout(io.StringIO()):
         head = run_case(str(path), out=str(out), fidelity=backend.fidelity, positions=backend.positions,
@@ -104,6 +106,10 @@ def write_results(out: Path, case_path, spec: DesignSpec, backend, hist: History
         "timings_s": {"compliance_once": round(backend.prepare_seconds, 3), **timing_record(hist),
                       "search": round(found.seconds, 3)},
     }
+    if hasattr(backend, "box_report"):
+        say("the baseline and the optimum over the tolerance box at the top torque ...")
+        summary["tolerance_box"] = {name: backend.box_report(ev.values) for name, ev in (("baseline", ev_base),
+                                                                                        ("optimum", best))}
     if hasattr(backend, "pair_deflection_um"):
         summary["design_rule"] = _design_rule(backend, best, max(torques))
     from .plots import plot_harris, plot_history, plot_map

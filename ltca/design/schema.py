@@ -1,8 +1,8 @@
 """The ``[design]`` table of a case: design variables with bounds, objective, constraints and search settings.
 
 One table serves every backend (:mod:`ltca.design.problem`): the variables a backend offers are declared in
-:data:`VARIABLES` (cylindrical: flank modifications; bevel: path angle eta2 and TE magnitude m21 per flank, for the
-bevel backend to come), everything else is shared. Validation follows :mod:`ltca.validation`: a bad table raises
+:data:`VARIABLES` (cylindrical: flank modifications; bevel: path angle eta2, TE magnitude m21 and ellipse axis per
+flank), everything else is shared. Validation follows :mod:`ltca.validation`: a bad table raises
 :class:`ltca.errors.CaseError` naming the dotted field (``design.variables.tip_relief_um.upper``), its value and
 what is allowed; the command line turns it into exit status 2. Imports nothing of ours but ltca.errors,
 ltca.validation and ltca.case (the fidelity presets).
@@ -41,8 +41,7 @@ VARIABLES: dict[str, dict[str, VariableKind]] = {
         "lead_crowning_um": VariableKind("um", 0.0, 200.0, "lead crowning C_beta (lead_crowning_um)", True),
         "lead_slope_um": VariableKind("um", -200.0, 200.0, "lead slope f_Hbeta (lead_slope_um)", True),
     },
-    # the bevel backend (synthesis -> machine settings -> TCA -> LTCA) plugs in under these names; its
-    # evaluator is not part of this package yet (ltca.design.problem.make_backend says so)
+    # the bevel backend (synthesis -> machine settings -> TCA -> LTCA): ltca.design.bevel
     "bevel": {
         f"{flank}_{key}": VariableKind(unit, lo, hi, f"{flank} flank: {what} (bevel.{flank}.{key})")
         for flank in ("working", "coast")
@@ -74,10 +73,16 @@ class Variable:
 @dataclass(frozen=True)
 class Constraints:
     """Constraints of the search: peak flank pressure (MPa, at every torque; None: none) and no load at the named
-    edges under a lead misalignment of +- ``misalignment_um`` at the top torque (0: not checked)."""
+    edges under a lead misalignment of +- ``misalignment_um`` at the top torque (0: not checked). Bevel: at the
+    top torque, at the nominal mounting and the 8 corners of the +- (E, P, G) ``tolerance_box`` (mm), the loaded
+    cells at least ``edge_margin_mm`` from the toe and the heel, and at most ``max_edge_share`` of a position's
+    load on cells at an edge (None: not checked)."""
     max_flank_pressure_mpa: float | None
     misalignment_um: float
     edges: tuple[str, ...]
+    edge_margin_mm: float | None = None
+    max_edge_share: float | None = None
+    tolerance_box: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -108,7 +113,10 @@ _VAR = Table({"lower": Num(-1e6, 1e6, required=True, note="lower bound, in the v
 _CONSTRAINTS = Table({
     "max_flank_pressure_mpa": Num(1.0, 1e5, "MPa", note="peak flank pressure at every torque, edges apart"),
     "misalignment_um": Num(0.0, 500.0, "um", default=0.0, note="lead misalignment tolerance +-, at the top torque"),
-    "edges": List(Str(CYLINDRICAL_EDGES + ("toe", "heel", "top", "root")), 1, 8, default=["face end"]),
+    "edges": List(Str(CYLINDRICAL_EDGES), 1, 8, default=["face end"]),
+    "edge_margin_mm": Num(0.0, 20.0, "mm", note="bevel: loaded cells' distance to the toe and the heel"),
+    "max_edge_share": Num(0.0, 1.0, note="bevel: largest share of a position's load on edge cells"),
+    "tolerance_box": Table({k: Num(0.0, 2.0, "mm", default=0.0) for k in ("E_mm", "P_mm", "G_mm")}),
 })
 _DESIGN = Table({
     "variables": Table({}, required=True, extra=lambda k: True),
@@ -160,6 +168,16 @@ _DOC_CON = {
                         "tolerance: at the top torque and +- this misalignment the edges below carry no load"),
     "edges": ("list", "-", "['face end']", "names of ltca.cylindrical.edges.EDGES", "edges that must carry no load "
               "under the misalignment tolerance"),
+    "edge_margin_mm": ("number", "mm", "none", "a number in [0, 20] mm, below a quarter of the face width "
+                       "(bevel)", "bevel: at the top torque, at the nominal mounting and every corner of "
+                       "tolerance_box, the loaded contact cells lie at least this far from the toe and the heel "
+                       "(cone distance in the gear and the pinion axial section)"),
+    "max_edge_share": ("number", "-", "none", "a number in [0, 1] (bevel)", "bevel: at the top torque, at the "
+                       "nominal mounting and every corner of tolerance_box, at most this share of a position's "
+                       "normal load on cells at an edge (the pinion top at the mesh entry, toe, heel, ...)"),
+    "tolerance_box": ("table", "mm", "E_mm = P_mm = G_mm = 0", "E_mm, P_mm, G_mm: numbers in [0, 2] mm (bevel)",
+                      "bevel: half-widths of the mounting tolerance box; its 8 corners (+-E, +-P, +-G) are "
+                      "checked for the edge margin"),
 }
 
 
@@ -214,13 +232,32 @@ def parse_design(data: dict, kind: str, n_torques: int, file: str | None = None)
             raise CaseError("design.map_variables[1]", mv[1], "another variable than map_variables[0]", file)
     map_vars = tuple(mv) if mv is not None else (tuple(names[:2]) if len(names) >= 2 else None)
     c = d["constraints"]
-    allowed_edges = CYLINDRICAL_EDGES if kind == "cylindrical" else ("toe", "heel", "top", "root")
+    raw_c = data["design"].get("constraints") or {}
+    allowed_edges = CYLINDRICAL_EDGES
+    if kind == "bevel":
+        if "edges" in raw_c:
+            raise CaseError("design.constraints.edges", raw_c["edges"], "not given for a bevel case: "
+                            "design.constraints.edge_margin_mm keeps the pattern off every edge", file)
+        c["edges"] = []
     for i, e in enumerate(c["edges"]):
         if e not in allowed_edges:
             raise CaseError(f"design.constraints.edges[{i}]", e, "one of " + ", ".join(map(repr, allowed_edges)),
                             file)
-    return DesignSpec(kind, tuple(variables), d["objective"], weights,
-                      Constraints(c["max_flank_pressure_mpa"], c["misalignment_um"], tuple(c["edges"])),
+    box = c["tolerance_box"] or {}
+    if kind != "bevel":
+        for key in ("edge_margin_mm", "max_edge_share", "tolerance_box"):
+            if key in raw_c:
+                raise CaseError(f"design.constraints.{key}", raw_c[key], "not given: a bevel constraint", file)
+    elif c["misalignment_um"] > 0:
+        raise CaseError("design.constraints.misalignment_um", c["misalignment_um"], "not given for a bevel case: "
+                        "the mounting tolerances are design.constraints.tolerance_box", file)
+    if any(box.get(k, 0.0) > 0 for k in ("E_mm", "P_mm", "G_mm")) and c["edge_margin_mm"] is None \
+            and c["max_edge_share"] is None:
+        raise CaseError("design.constraints.edge_margin_mm", None, "an edge margin (mm) or max_edge_share for "
+                        "the tolerance box to be checked against", file)
+    constraints = Constraints(c["max_flank_pressure_mpa"], c["misalignment_um"], tuple(c["edges"]),
+                              c["edge_margin_mm"], c["max_edge_share"], tuple(float(box.get(k, 0.0)) for k in ("E_mm", "P_mm", "G_mm")))
+    return DesignSpec(kind, tuple(variables), d["objective"], weights, constraints,
                       d["optimiser"], d["max_evaluations"], map_vars, d["map_points"],
                       tuple(d["harris_torque_nm"] or ()), d["fidelity"], d["positions"], d["seed"])
 

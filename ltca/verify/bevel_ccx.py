@@ -37,7 +37,7 @@ from geometry.bevel.generation import generate_flank
 from geometry.bevel.tca import RAD_PER_ARCSEC, mesh_frames
 
 from ..bevel.cells import pair_minima
-from ..bevel.loaded_model import LOADED, BevelLoadedModel
+from ..bevel.model import LOADED, BevelLoadedModel
 from .calculix import penalty_slope
 
 __all__ = ["BevelCcxSettings", "BevelCcxResult", "solve_bevel_ccx", "bevel_ladder"]

@@ -1,0 +1,76 @@
+"""The records of the bevel LTCA: model size (:class:`BevelFidelity`), both members' compliance for one flank pair
+(:class:`BevelBodies`) and that pair in one assembly (:class:`BevelLoadedModel`).  Built by
+:mod:`ltca.bevel.loaded_model`; read by :mod:`ltca.bevel.cells` and :mod:`ltca.bevel.loaded`."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from fem.compliance import BodyCompliance
+from geometry.bevel.gaps import MeshGaps
+from geometry.bevel.tca import Assembly, BevelPair
+
+__all__ = ["LOADED", "MESHED", "BevelFidelity", "BevelBodies", "BevelLoadedModel"]
+
+#: teeth of each member that can carry load (pair j: pinion tooth +j, gear tooth -j) and the meshed ones
+LOADED = (-1, 0, 1)
+MESHED = (-2, -1, 0, 1, 2)
+
+
+@dataclass(frozen=True)
+class BevelFidelity:
+    """Model size: compliance grid, body mesh divisions, contact cells (see the module docstrings).
+
+    grid : (n_t, n_L) compliance grid per loaded flank;  divisions : body mesh (n_L, n_t, n_s, n_g, n_rim,
+    n_far);  depth : read depth of the regular part, mm;  cells : (along the major, across the minor axis)
+    cells over the window of each pair;  window : (major, minor) window approach as multiples of the Hertz
+    approach of the whole load on one pair;  near_field : add the half-space near field at the cells.
+    """
+    name: str = "default"
+    grid: tuple[int, int] = (9, 13)
+    divisions: tuple[int, int, int, int, int, int] = (14, 7, 5, 3, 3, 16)
+    depth: float = 0.5
+    cells: tuple[int, int] = (33, 17)
+    window: tuple[float, float] = (1.6, 1.0)
+    near_field: bool = True
+
+    @classmethod
+    def named(cls, name: str) -> "BevelFidelity":
+        """``coarse``, ``default`` or ``fine`` (the convergence ladder)."""
+        table = {"coarse": cls("coarse", (7, 9), (10, 5, 4, 3, 2, 12), 0.5, (25, 13)),
+                 "default": cls(),
+                 "fine": cls("fine", (11, 17), (20, 10, 7, 4, 4, 24), 0.5, (45, 23))}
+        if name not in table:
+            raise ValueError(f"fidelity = {name!r}: allowed {sorted(table)}")
+        return table[name]
+
+
+@dataclass
+class BevelBodies:
+    """Compliance of both members for one flank pair (pinion ``side``), reusable over assemblies and torques."""
+    side: str
+    body1: BodyCompliance
+    body2: BodyCompliance
+    off1: float
+    off2: float
+    fid: BevelFidelity
+    young: float
+    poisson: float
+    timings: dict = field(default_factory=dict)
+
+
+@dataclass
+class BevelLoadedModel:
+    """One flank pair in one assembly, ready for :func:`ltca.bevel.loaded.solve_position`."""
+    pair: BevelPair
+    bodies: BevelBodies
+    gaps: MeshGaps
+    asm: Assembly
+    g_ref: float          # gear rotation closing the first contact at phi1 = 0 (TE reference), rad
+
+    @property
+    def side(self) -> str:
+        return self.bodies.side
+
+    @property
+    def fid(self) -> BevelFidelity:
+        return self.bodies.fid
