@@ -40,7 +40,7 @@ from .spec import SegmentMesh
 
 __all__ = ["BevelSolidSpec", "build_bevel_solid", "polar", "flank_t"]
 
-_VERSION = "bevel-occ-1"
+_VERSION = "bevel-occ-2"
 
 
 @dataclass(frozen=True)
@@ -101,9 +101,8 @@ def _shift(spec: BevelSolidSpec) -> float:
     side = np.sign(pa[0, 0] * na[0, 1] - pa[0, 1] * na[0, 0])          # + : normal along e_theta
     if side == np.sign(po[0, 0] * no[0, 1] - po[0, 1] * no[0, 0]):
         raise ValueError("both flanks face the same way; not the two sides of a tooth")
-    target = polar(pa[0]) - side * spec.thickness
-    pitch = 2 * np.pi / spec.z
-    return float((target - polar(po[0]) + 0.5 * pitch) % pitch - 0.5 * pitch)
+    target = polar(pa[0]) - side * spec.thickness           # the material lies against the normal
+    return float((target - polar(po[0]) + np.pi) % (2 * np.pi) - np.pi)   # not modulo a pitch: that is the slot
 
 
 def _rz(p: np.ndarray, a: float) -> np.ndarray:
@@ -244,6 +243,13 @@ def _snap(spec: BevelSolidSpec, nodes: np.ndarray, facets: dict) -> float:
         name = f"flank_{k}_{spec.anchor}"
         if name not in facets:
             raise ValueError(f"no {name} surface in the bevel solid")
+        tri = facets[name][:: max(1, len(facets[name]) // 25)]
+        V = nodes[tri[:, :3]]
+        nf = np.cross(V[:, 1] - V[:, 0], V[:, 2] - V[:, 0])
+        tc, Lc = flank_t(fl, spec.pitch_angle, _rz(V.mean(1), -k * 2 * np.pi / spec.z))
+        ne = _rz(flank_at(fl, np.clip(tc, 0, 1), np.clip(Lc, fl.v[0], fl.v[-1]))[1], k * 2 * np.pi / spec.z)
+        if np.median(np.einsum("ij,ij->i", nf, ne)) <= 0.0:
+            raise ValueError(f"{name}: the solid's material lies on the wrong side of the generated flank")
         ids = np.unique(facets[name])
         P = _rz(nodes[ids], -k * 2 * np.pi / spec.z)
         t, L = flank_t(fl, spec.pitch_angle, P)

@@ -90,11 +90,15 @@ def run_bevel_validation(case_path: str, fractions=(0.0, 0.4), out: str = "out/v
     def ccx(f, st):
         return solve_bevel_ccx(lm, f * cycle, torque * 1e3, st, outdir / f"ccx_{f:+.3f}_h{1e3 * st.h_zone:.0f}",
                                cache=str(outdir / "cad"), say=say)
-    ladder = [ccx(fractions[0], st) for st in ladder_st[:refine + 1]]
+    # the rungs up to ``level`` first, then the other positions, then the finer rungs (an interrupted run keeps
+    # the comparison at every position; every run is reused on a rerun)
+    ladder = [ccx(fractions[0], st) for st in ladder_st[:level + 1]]
+    others = {f: ccx(f, ladder_st[level]) for f in fractions[1:]}
+    ladder += [ccx(fractions[0], st) for st in ladder_st[level + 1:refine + 1]]
     rows = []
     for i, f in enumerate(fractions):
         o = ours_at(lm, f * cycle, torque)
-        c = ladder[-1] if i == 0 else ccx(f, ladder_st[level])
+        c = ladder[-1] if i == 0 else others[f]
         e = _compare(o, c)
         rows.append({"fraction": f, "phi1": f * cycle, "ours": o, "ccx": {
             "theta": c.theta_arcsec, "share": c.share, "p_interior": c.p_interior, "p_nodal_max": c.p_nodal_max,
