@@ -27,7 +27,7 @@ from ..bevel.analysis import build_pair
 from ..bevel.case import load_bevel_case
 from ..bevel.loaded import solve_position
 from ..bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
-from .bevel_ccx import bevel_ladder, solve_bevel_ccx
+from .bevel_ccx import BevelCcxSettings, bevel_ladder, interior, solve_bevel_ccx
 from .calculix import richardson
 
 __all__ = ["BOUNDS_BEVEL", "run_bevel_validation", "ours_at", "bevel_model"]
@@ -50,11 +50,14 @@ def middle_torque(case: dict) -> float:
     return float(tq[len(tq) // 2])
 
 
-def ours_at(lm, phi1: float, torque_nm: float) -> dict:
-    """Our theta (arcsec of the gear), pair shares, interior and overall peak pressure (MPa), wall time (s)."""
+def ours_at(lm, phi1: float, torque_nm: float, edge_mm: float = BevelCcxSettings.edge_mm) -> dict:
+    """Our theta (arcsec of the gear), pair shares, interior and overall peak pressure (MPa), wall time (s).
+
+    Interior: cells at no edge and farther than ``edge_mm`` from both members' tops, toes and heels (the
+    CalculiX side's criterion, :func:`ltca.verify.bevel_ccx.interior`)."""
     t0 = time.perf_counter()
     r = solve_position(lm, phi1, torque_nm * 1e3)
-    inner = r.pressure[r.edge == ""]
+    inner = r.pressure[(r.edge == "") & interior(lm, r.L1, r.Rn1, r.L2, r.Rn2, edge_mm)]
     return {"theta": r.theta / RAD_PER_ARCSEC, "share": {int(k): float(v) for k, v in r.pair_share.items()},
             "p_interior": float(inner.max()) if inner.size else 0.0, "p_max": r.max_pressure,
             "edge_load": r.edge_load(), "wall": time.perf_counter() - t0}

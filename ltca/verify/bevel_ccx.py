@@ -17,7 +17,7 @@ zone of pair j (refined, and the contact surfaces) is where the unloaded normal 
 
 Read per position: theta (arcsec of the gear), each pair's torque share about the pinion axis (total contact
 force of the pair times its pressure centroid), and the peak flank pressure away from the edges (pinion top,
-gear root, toe and heel: farther than ``edge_mm``), from a quadratic fit of p^2 (the elliptic Hertz shape)
+gear top, toe and heel: farther than ``edge_mm``, :func:`interior`), from a quadratic fit of p^2 (the elliptic Hertz shape)
 around the highest node.  Runs are kept in their folder with ``result.json`` keyed by the deck's SHA-256.
 """
 from __future__ import annotations
@@ -32,15 +32,15 @@ import numpy as np
 
 from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
 from fem.calculix.run import read_results, run_ccx
-from fem.solids.bevel_occ import BevelSolidSpec, build_bevel_solid, flank_t
+from fem.solids.bevel_occ import BevelSolidSpec, build_bevel_solid
 from geometry.bevel.generation import generate_flank
-from geometry.bevel.tca import RAD_PER_ARCSEC, mesh_frames
+from geometry.bevel.tca import RAD_PER_ARCSEC, mesh_frames, to_pitch_coords
 
 from ..bevel.cells import pair_minima
 from ..bevel.model import LOADED, BevelLoadedModel
 from .calculix import penalty_slope
 
-__all__ = ["BevelCcxSettings", "BevelCcxResult", "solve_bevel_ccx", "bevel_ladder"]
+__all__ = ["BevelCcxSettings", "BevelCcxResult", "solve_bevel_ccx", "bevel_ladder", "interior"]
 
 
 @dataclass(frozen=True)
@@ -211,7 +211,7 @@ def solve_bevel_ccx(lm: BevelLoadedModel, phi1: float, torque1: float, st: Bevel
         c = (p[on, None] * X[idx[on]]).sum(0) / p[on].sum()
         torques[j] = abs(float(np.cross(c, F)[2]))
         pmax = max(pmax, float(p[on].max()))
-        keep = on & _interior(lm, m1.nodes[idx], j, st.edge_mm)
+        keep = on & _interior(lm, X[idx], T2, st.edge_mm)
         if keep.any():
             peaks.append(_fit_peak(m1.nodes[idx[keep]], p[keep], 2.5 * st.h_zone))
     tot = sum(torques.values()) or 1.0
@@ -226,15 +226,22 @@ def solve_bevel_ccx(lm: BevelLoadedModel, phi1: float, torque1: float, st: Bevel
     return out
 
 
-def _interior(lm: BevelLoadedModel, P: np.ndarray, j: int, edge: float) -> np.ndarray:
-    """Pinion nodes (tooth j, pinion frame) farther than ``edge`` mm from the pinion top, toe and heel (the
-    gear root is the pinion's top region here: the same margin below the top covers it)."""
-    gp = lm.gaps
-    Q = P @ _rz(-j * gp.c1).T
-    t, L = flank_t(gp.P.flank, lm.pair.blank.pinion.pitch_angle, Q)
-    root, face = gp.P._cones(L)
-    depth = (face - root) * (1.0 - t)
-    return (depth > edge) & (L > gp.P.Ai + edge) & (L < gp.P.A0 - edge) & (t > 0.0)
+def interior(lm: BevelLoadedModel, L1, Rn1, L2, Rn2, edge: float) -> np.ndarray:
+    """Points (pinion and gear axial sections, mm) farther than ``edge`` mm from both members' tops, toes and heels
+    (a member's root is the other's top)."""
+    out = np.ones(np.shape(L1), bool)
+    for M, L, Rn in ((lm.gaps.P, L1, Rn1), (lm.gaps.G, L2, Rn2)):
+        out &= (M._cones(L)[1] - Rn > edge) & (L > M.Ai + edge) & (L < M.A0 - edge)
+    return out
+
+
+def _interior(lm: BevelLoadedModel, X: np.ndarray, T2: np.ndarray, edge: float) -> np.ndarray:
+    """:func:`interior` of world points X on the pinion (world = pinion frame at its deck angle ``T1 = rz``)."""
+    bl = lm.pair.blank
+    L1, Rn1 = to_pitch_coords(X, bl.pinion.pitch_angle)
+    Xg = (X - T2[:3, 3]) @ T2[:3, :3]
+    L2, Rn2 = to_pitch_coords(Xg, bl.gear.pitch_angle)
+    return interior(lm, L1, Rn1, L2, Rn2, edge)
 
 
 def _fit_peak(X: np.ndarray, p: np.ndarray, radius: float) -> float:
