@@ -40,7 +40,7 @@ from .spec import SegmentMesh
 
 __all__ = ["BevelSolidSpec", "build_bevel_solid", "polar", "flank_t"]
 
-_VERSION = "bevel-occ-2"
+_VERSION = "bevel-occ-3"
 
 
 @dataclass(frozen=True)
@@ -161,8 +161,11 @@ def _fused(spec: BevelSolidSpec, shift: float) -> list:
     import gmsh
     occ = gmsh.model.occ
     tooth = _tooth(spec, shift)
-    teeth = [(3, tooth)] + [occ.copy([(3, tooth)])[0] for _ in range(spec.z - 1)]
-    for k, dt in enumerate(teeth[1:], start=1):
+    # copies alternately on both sides, the last one opposite tooth 0 (OCC dropped the flanks of the last copy
+    # of the fuse once: it must be far from the mesh)
+    order = sorted(range(1, spec.z), key=lambda k: (min(k, spec.z - k), k > spec.z - k))
+    teeth = [(3, tooth)] + [occ.copy([(3, tooth)])[0] for _ in order]
+    for k, dt in zip(order, teeth[1:]):
         occ.rotate([dt], 0, 0, 0, 0, 0, 1, k * 2 * np.pi / spec.z)
     O = np.asarray(spec.outline, float)
     pts = [occ.addPoint(r, 0.0, zz) for zz, r in O]

@@ -49,7 +49,7 @@ class BevelCcxSettings:
     h_zone: float = 0.25
     h_body: float = 5.0
     h_tooth: float = 2.5
-    grow: float = 0.35
+    grow: float = 0.45
     cap_refine: float = 0.012
     cap_contact: float = 0.040
     penalty_factor: float = 10.0
