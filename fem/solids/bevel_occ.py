@@ -40,7 +40,7 @@ from .spec import SegmentMesh
 
 __all__ = ["BevelSolidSpec", "build_bevel_solid", "polar", "flank_t"]
 
-_VERSION = "bevel-occ-3"
+_VERSION = "bevel-occ-4"
 
 
 @dataclass(frozen=True)
@@ -168,7 +168,7 @@ def _fused(spec: BevelSolidSpec, shift: float) -> list:
     for k, dt in zip(order, teeth[1:]):
         occ.rotate([dt], 0, 0, 0, 0, 0, 1, k * 2 * np.pi / spec.z)
     O = np.asarray(spec.outline, float)
-    pts = [occ.addPoint(r, 0.0, zz) for zz, r in O]
+    pts = [occ.addPoint(-r, 0.0, zz) for zz, r in O]        # the revolution's seam opposite tooth 0
     loop = occ.addCurveLoop([occ.addLine(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))])
     blank = occ.revolve([(2, occ.addPlaneSurface([loop]))], 0, 0, 0, 0, 0, 1, 2 * np.pi)
     fused, _ = occ.fuse([d for d in blank if d[0] == 3], teeth)
