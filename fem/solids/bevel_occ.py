@@ -12,10 +12,12 @@ The independent body of the bevel CalculiX check (issue 13), built apart from ou
   rotated copy.
 * **Blank.** The axial-section polygon ``outline`` (Z, rho), whose first edge is the root cone from toe to heel,
   revolved through 360 deg and fused with all teeth: the root land between the teeth is the root cone.
-* **Mesh.** gmsh Frontal-Delaunay surfaces and Delaunay volumes, second order (C3D10), sized by the distance
-  to the contact zone points ``zone`` (``h_zone + grow * d``, at most ``h_body``).  The nodes of the anchor-side
-  flanks of ``snap_teeth`` are then moved in polar angle onto the exact generated surface
-  (:func:`geometry.bevel.sampling.flank_at`), so the contact surfaces carry no spline or chord error.
+* **Mesh.** gmsh Frontal-Delaunay surfaces and Delaunay volumes, second order (C3D10, straight edges: curved
+  ones gave a nonpositive Jacobian in a coarse fillet), sized by the distance to the contact zone points ``zone``
+  (``h_zone + grow * d``, at most ``h_body``).  The nodes of the anchor-side flanks of ``snap_teeth`` above depth
+  fraction ``snap_from`` (the fillet below it is left on its chords) are then moved in polar angle onto the exact
+  generated surface (:func:`geometry.bevel.sampling.flank_at`): the contact surfaces carry no spline or chord
+  error.
 
 Facet groups: ``flank_{k}_{concave|convex}`` for k in ``name_teeth`` (k = tooth index, counter-clockwise about
 +z), and one group per named outline edge (``supports``: name -> edge index).  Frame: the member's body frame
@@ -74,6 +76,7 @@ class BevelSolidSpec:
     rows: int = 21
     name_teeth: tuple = (-2, -1, 0, 1, 2)
     snap_teeth: tuple = ()
+    snap_from: float = 0.15
     cad_cache: str | None = None
     extra: dict = field(default_factory=dict)
 
@@ -256,7 +259,7 @@ def _snap(spec: BevelSolidSpec, nodes: np.ndarray, facets: dict) -> float:
         ids = np.unique(facets[name])
         P = _rz(nodes[ids], -k * 2 * np.pi / spec.z)
         t, L = flank_t(fl, spec.pitch_angle, P)
-        ok = (t >= 0.0) & (t <= 1.0) & (L >= fl.v[0]) & (L <= fl.v[-1])
+        ok = (t >= spec.snap_from) & (t <= 1.0) & (L >= fl.v[0]) & (L <= fl.v[-1])
         Q = flank_at(fl, t[ok], L[ok])[0]
         a = polar(Q) + k * 2 * np.pi / spec.z
         rho = np.hypot(nodes[ids[ok], 0], nodes[ids[ok], 1])
@@ -272,7 +275,7 @@ def _snap(spec: BevelSolidSpec, nodes: np.ndarray, facets: dict) -> float:
 
 
 _OPTIONS = {"General.NumThreads": 2, "Mesh.MeshSizeFromPoints": 0, "Mesh.MeshSizeExtendFromBoundary": 0,
-            "Mesh.MeshSizeFromCurvature": 0, "Mesh.SecondOrderLinear": 0, "Mesh.Algorithm": 6,
+            "Mesh.MeshSizeFromCurvature": 0, "Mesh.SecondOrderLinear": 1, "Mesh.Algorithm": 6,
             "Mesh.Algorithm3D": 1, "Mesh.Optimize": 1, "Mesh.ElementOrder": 1, "Geometry.Tolerance": 1e-6,
             "Geometry.OCCParallel": 1}
 
