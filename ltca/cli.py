@@ -90,6 +90,18 @@ def _cmd_validate(a: argparse.Namespace) -> int:
         from .verify.bevel_check import run_bevel_validate
         return run_bevel_validate(a.case, a.out, progress=not a.quiet)
     a.case = a.case or "cases/fzg_c14.toml"
+    if a.reference == "calculix" and _is_bevel(a.case):
+        from fem.calculix.run import CcxNotFound
+        from .verify.bevel_calculix import run_bevel_validation
+        from .verify.whole_check import command_line
+        try:
+            return run_bevel_validation(a.case, tuple(a.positions or (0.0, 0.4)), a.out,
+                                        refine=2 if a.refine is None else a.refine, level=a.level,
+                                        h0=1e-3 * (a.band or 250.0), freeze=a.freeze,
+                                        command=command_line(sys.argv[1:]), progress=not a.quiet)
+        except CcxNotFound as exc:
+            print(f"ltca validate: {exc}", file=sys.stderr)
+            return 2
     if a.reference == "calculix-whole":
         from fem.calculix.run import CcxNotFound
         from .verify.whole_check import command_line, run_whole_validation
@@ -291,7 +303,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="case for --reference calculix (default cases/fzg_c14.toml); a [bevel] case with the "
                         "analytic reference runs the bevel checks (elliptic Hertz, light-load limit, V-H table)")
     v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
-                   help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9)")
+                   help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9); a "
+                        "[bevel] case: pinion angles in mesh cycles from the mean point (default 0 0.4)")
     v.add_argument("--refine", type=int, default=None,
                    help="CalculiX contact-band refinements at the first position (its convergence check; default 2, "
                         "calculix-whole 1)")
@@ -309,7 +322,8 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--fidelity", choices=["coarse", "default", "fine"], default="default",
                    help="our fidelity for --reference calculix-whole")
     v.add_argument("--freeze", metavar="JSON",
-                   help="calculix-whole: write the CalculiX results as a frozen reference with provenance")
+                   help="calculix-whole, and calculix on a [bevel] case: write the CalculiX results as a frozen "
+                        "reference with provenance")
     v.add_argument("--quiet", action="store_true", help="no progress output")
     v.set_defaults(func=_cmd_validate)
 

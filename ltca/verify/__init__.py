@@ -1,5 +1,6 @@
 """ltca.verify: checks of the analyses against references: ``validate`` (Hertz, ISO 6336-1, kinematic
-identities), ``calculix`` and ``crosscheck`` (the same pair solved by CalculiX), ``convergence`` (fidelity
+identities), ``calculix`` and ``crosscheck`` (the same pair solved by CalculiX), ``bevel_ccx`` and
+``bevel_calculix`` (the spiral bevel pair by CalculiX on independent whole members, issue 13), ``convergence`` (fidelity
 ladder), ``bench`` (cold wall time per stage).
 
 Imports geometry, fem (fem.calculix, fem.solids, fem.compliance), ltca.case / ltca.errors / ltca.results and the

@@ -1,0 +1,263 @@
+"""CalculiX on the whole spiral bevel pair: the independent FE check of the bevel LTCA (issue 13).
+
+Both members are OpenCASCADE solids with every tooth (:mod:`fem.solids.bevel_occ`: lofted from exact flank
+points, fused with a revolved blank, gmsh tetrahedra refined on the contact zones), not our mapped body
+(:mod:`fem.solids.bevel_body`).  Supports as in service: the pinion's bore (a shaft seat of radius
+``r_bore1``) is a rigid body that may only turn about the pinion axis and carries the pinion torque; the
+gear's back face (a mounting face ``back_depth`` whole depths under the heel's root) is fixed.  Contact:
+frictionless surface-to-surface penalty contact, linear pressure-overclosure law of slope 10 E / h.
+
+World frame: the pinion's axis frame in the mesh (:func:`geometry.bevel.tca.mesh_frames`, not rotated), so the
+pinion turns about world z.  At pinion angle phi1 the gear is set where it first touches (the smallest closing
+rotation g_min of the unloaded gaps, :mod:`geometry.bevel.gaps`); the pinion is turned ``preload`` into it and
+the torque added.  The loaded approach as a gear rotation is theta = (z1/z2)(preload + s psi) with psi the
+pinion's rotation read and s the closing sense; our counterpart is :attr:`BevelPosition.theta`.  The contact
+zone of pair j (refined, and the contact surfaces) is where the unloaded normal gap is below ``cap_refine`` and
+``cap_contact`` (geometry only, not our loaded solution).
+
+Read per position: theta (arcsec of the gear), each pair's torque share about the pinion axis (total contact
+force of the pair times its pressure centroid), and the peak flank pressure away from the edges (pinion top,
+gear top, toe and heel: farther than ``edge_mm``, :func:`interior`), from a quadratic fit of p^2 (the elliptic Hertz shape)
+around the highest node.  Runs are kept in their folder with ``result.json`` keyed by the deck's SHA-256.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+
+from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
+from fem.calculix.run import read_results, run_ccx
+from fem.solids.bevel_occ import BevelSolidSpec, build_bevel_solid
+from geometry.bevel.generation import generate_flank
+from geometry.bevel.tca import RAD_PER_ARCSEC, mesh_frames, to_pitch_coords
+
+from ..bevel.cells import pair_minima
+from ..bevel.model import LOADED, BevelLoadedModel
+from .calculix import penalty_slope
+
+__all__ = ["BevelCcxSettings", "BevelCcxResult", "solve_bevel_ccx", "bevel_ladder", "interior"]
+
+
+@dataclass(frozen=True)
+class BevelCcxSettings:
+    """Fidelity and model choices of the bevel CalculiX check (mm, MPa/mm, rad)."""
+    h_zone: float = 0.25
+    h_body: float = 5.0
+    h_tooth: float = 2.5
+    grow: float = 0.45
+    cap_refine: float = 0.012
+    cap_contact: float = 0.040
+    penalty_factor: float = 10.0
+    preload_arcsec: float = 20.0      # gear arcsec of initial overclosure
+    r_bore1: float = 9.0
+    back_depth: float = 1.2
+    edge_mm: float = 0.8
+    threads: int = 2
+
+
+def bevel_ladder(levels: int = 3, h0: float = 0.25) -> list[BevelCcxSettings]:
+    """Contact-zone sizes h0, h0/1.5, h0/1.5^2 ..."""
+    return [BevelCcxSettings(h_zone=h0 / 1.5 ** i) for i in range(levels)]
+
+
+@dataclass
+class BevelCcxResult:
+    """CalculiX at one position (arcsec of the gear, N, MPa, s)."""
+    phi1: float
+    theta_arcsec: float
+    share: dict
+    pair_force: dict
+    p_interior: float
+    p_nodal_max: float
+    wall: float
+    info: dict
+
+
+def _rz(a: float) -> np.ndarray:
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _frame(R: np.ndarray, o=np.zeros(3)) -> np.ndarray:
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = R, o
+    return T
+
+
+def _outline(lm: BevelLoadedModel, member: str, st: BevelCcxSettings) -> tuple[np.ndarray, dict]:
+    """Blank polygon (Z, rho), edge 0 the root cone toe -> heel, and the support edge."""
+    bl = lm.pair.blank
+    mb, A0, Ai = bl.member(member), bl.outer_cone_distance, bl.inner_cone_distance
+    g = mb.pitch_angle
+    root = lambda L: -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle))       # noqa: E731
+    ax = lambda L, Rn: np.array([L * np.cos(g) - Rn * np.sin(g), L * np.sin(g) + Rn * np.cos(g)])  # noqa: E731
+    A, B = ax(Ai, root(Ai)), ax(A0, root(A0))
+    d = np.array([np.sin(g), -np.cos(g)])                   # into the material along the front/back cones
+    if member == "pinion":                                  # down to the shaft seat rho = r_bore1
+        return np.array([A, B, B + d * (B[1] - st.r_bore1) / np.cos(g), A + d * (A[1] - st.r_bore1) / np.cos(g)]), \
+            {"bore": 2}
+    C = B + d * st.back_depth * bl.whole_depth              # gear: down to the back (mounting) face Z = Z_C
+    return np.array([A, B, C, A + d * (C[0] - A[0]) / d[0]]), {"back": 2}
+
+
+def _zones(lm: BevelLoadedModel, phi1: float, g_min: float, ang2: float, cap: float) -> dict:
+    """Per pair j: pinion points (pinion frame, tooth j) and gear points (gear frame) with gap < cap."""
+    gp = lm.gaps
+    T, L = np.meshgrid(np.linspace(0.0, 1.0, 61), np.linspace(*gp.L_range, 161), indexing="ij")
+    B1, O1, B2, O2 = mesh_frames(lm.pair.blank, lm.asm)
+    out = {}
+    for j in LOADED:
+        r = gp.gaps(phi1 + j * gp.c1, T, L)
+        m = np.isfinite(r.g) & ((r.g - g_min) * r.v2 < cap)
+        if not m.any():
+            continue
+        p1 = r.r1[m] @ _rz(j * gp.c1).T                     # tooth j in the pinion body frame
+        h = (p1 @ _rz(phi1).T) @ B1.T + O1
+        p2 = ((h - O2) @ B2) @ _rz(ang2)                     # into the gear body frame at its angle ang2
+        out[j] = (p1, p2)
+    return out
+
+
+def _member(lm, member: str, st: BevelCcxSettings, zone: np.ndarray, snap: tuple, cache, say):
+    bl = lm.pair.blank
+    mb = bl.member(member)
+    cut = lm.pair.pinion if member == "pinion" else lm.pair.gear
+    off = 0.03 * bl.data.module
+    fl = {s: generate_flank(cut.flank(s), bl, member, 13, 11, off) for s in ("concave", "convex")}
+    rn = np.asarray(fl["concave"].meta["Rn"])[:, 5]
+    anchor = lm.side if member == "pinion" else lm.gaps.gear_side
+    outline, sup = _outline(lm, member, st)
+    spec = BevelSolidSpec(fl["concave"], fl["convex"], mb.z, mb.pitch_angle, off, anchor,
+                          mb.mean_normal_thickness / (np.cos(bl.data.spiral_angle) * mb.mean_pitch_radius),
+                          float(np.interp(0.0, rn, fl["concave"].u)), bl.mean_cone_distance, outline, sup, zone,
+                          st.h_zone, st.h_body, st.grow, st.h_tooth, snap_teeth=snap, cad_cache=cache)
+    return build_bevel_solid(spec, say), spec
+
+
+def _near(mesh, group: str, pts: np.ndarray, halo: float) -> np.ndarray:
+    from scipy.spatial import cKDTree
+    tri = mesh.facets[group]
+    d = cKDTree(pts).query(mesh.nodes[tri[:, :3]].mean(axis=1))[0]
+    return tri[d < halo]
+
+
+def solve_bevel_ccx(lm: BevelLoadedModel, phi1: float, torque1: float, st: BevelCcxSettings, workdir, cache=None,
+                    say=print) -> BevelCcxResult:
+    """CalculiX at pinion angle ``phi1`` (rad) under the pinion torque ``torque1`` (N mm)."""
+    t_all = time.perf_counter()
+    gp, bl = lm.gaps, lm.pair.blank
+    mins = [m for m in pair_minima(lm, phi1, LOADED) if m is not None]
+    g_min = min(m.g for m in mins)
+    ratio, s2 = gp.ratio, float(gp._s2)
+    ang2 = gp.phi2_0 - ratio * phi1 + s2 * g_min
+    fine = _zones(lm, phi1, g_min, ang2, st.cap_refine)
+    wide = _zones(lm, phi1, g_min, ang2, st.cap_contact)
+    pairs_j = sorted(fine)
+    say(f"bevel CalculiX phi1 {phi1:+.5f} rad, zone {1e3 * st.h_zone:.0f} um: pairs {pairs_j} in the contact zone")
+    m1, s1 = _member(lm, "pinion", st, np.vstack([fine[j][0] for j in pairs_j]), tuple(pairs_j), cache, say)
+    m2, s2spec = _member(lm, "gear", st, np.vstack([fine[j][1] for j in pairs_j]), tuple(-j for j in pairs_j),
+                         cache, say)
+    f1, f2, pairs = dict(m1.facets), dict(m2.facets), []
+    for j in pairs_j:
+        f1[f"c{j}"] = _near(m1, f"flank_{j}_{lm.side}", wide[j][0], 3 * st.h_zone)
+        f2[f"c{j}"] = _near(m2, f"flank_{-j}_{gp.gear_side}", wide[j][1], 3 * st.h_zone + 0.5)
+        pairs.append(ContactPairSpec(f"P{j + 1}", ("pinion", (f"c{j}",)), ("gear", (f"c{j}",))))
+    m1 = type(m1)(m1.nodes, m1.tets, f1, m1.spec_hash, m1.seconds)
+    m2 = type(m2)(m2.nodes, m2.tets, f2, m2.spec_hash, m2.seconds)
+    B1, O1, B2, O2 = mesh_frames(bl, lm.asm)
+    delta = st.preload_arcsec * RAD_PER_ARCSEC / ratio                  # pinion overclosure, rad
+    T1 = _frame(_rz(phi1 + s2 * delta))
+    T2 = _frame(B1.T @ B2 @ _rz(ang2), B1.T @ (O2 - O1))
+    deck = CcxDeck(young=lm.bodies.young, poisson=lm.bodies.poisson, fixed=("gear", "back"),
+                   driven=("pinion", "bore"), moment=s2 * torque1, pairs=tuple(pairs),
+                   penalty=penalty_slope(st.h_zone, st.penalty_factor, lm.bodies.young))
+    work = Path(workdir)
+    work.mkdir(parents=True, exist_ok=True)
+    ids = write_deck(work / "job.inp", [DeckBody("pinion", m1, T1), DeckBody("gear", m2, T2)], deck)
+    digest = hashlib.sha256((work / "job.inp").read_bytes()).hexdigest()
+    info = {"nodes": len(m1.nodes) + len(m2.nodes), "elements": len(m1.tets) + len(m2.tets),
+            "nodes_pinion": len(m1.nodes), "nodes_gear": len(m2.nodes), "h_zone_mm": st.h_zone,
+            "settings": asdict(st), "mesh_wall": m1.seconds + m2.seconds, "deck_sha256": digest,
+            "snap_um": [1e3 * s1.extra["snap_mm"], 1e3 * s2spec.extra["snap_mm"]], "pairs": pairs_j}
+    done = work / "result.json"
+    if done.exists() and json.loads(done.read_text()).get("info", {}).get("deck_sha256") == digest:
+        say(f"  reusing {done}")
+        rec = json.loads(done.read_text())
+        return BevelCcxResult(**{k: rec[k] for k in rec if k != "share" and k != "pair_force"},
+                              share={int(k): v for k, v in rec["share"].items()},
+                              pair_force={int(k): v for k, v in rec["pair_force"].items()})
+    say(f"  {3 * info['nodes']} dofs, {len(pairs)} contact pair(s), meshed in {info['mesh_wall']:.0f} s; ccx ...")
+    wall = run_ccx(work / "job.inp", threads=st.threads)
+    res = read_results(work / "job", ids["rot"], tuple(p.name for p in pairs))
+    theta = ratio * (delta + s2 * res.rotation)
+    # torque share about the pinion axis: pair force at its pressure centroid; interior peak pressure
+    X = m1.nodes @ T1[:3, :3].T
+    idx = res.contact_nodes - 1
+    ok = (idx >= 0) & (idx < len(m1.nodes)) & (res.contact_pressure > 0)
+    idx, p = idx[ok], res.contact_pressure[ok]
+    torques, forces, peaks, pmax = {}, {}, [], 0.0
+    for j, pr in zip(pairs_j, pairs):
+        on = np.isin(idx, np.unique(f1[f"c{j}"]))
+        F = np.asarray(res.pair_force.get(pr.name, np.zeros(3)))
+        forces[j] = float(np.linalg.norm(F))
+        if not on.any() or forces[j] == 0.0:
+            torques[j] = 0.0
+            continue
+        c = (p[on, None] * X[idx[on]]).sum(0) / p[on].sum()
+        torques[j] = abs(float(np.cross(c, F)[2]))
+        pmax = max(pmax, float(p[on].max()))
+        keep = on & _interior(lm, X[idx], T2, st.edge_mm)
+        if keep.any():
+            peaks.append(_fit_peak(m1.nodes[idx[keep]], p[keep], 2.5 * st.h_zone))
+    tot = sum(torques.values()) or 1.0
+    out = BevelCcxResult(float(phi1), theta / RAD_PER_ARCSEC, {j: v / tot for j, v in torques.items()}, forces,
+                         max(peaks, default=0.0), pmax, time.perf_counter() - t_all,
+                         dict(info, ccx_wall=wall, psi=res.rotation, delta=delta,
+                              torque_balance=tot / torque1, reaction=res.fixed_reaction.tolist()))
+    say(f"  ccx {wall:.0f} s: theta {out.theta_arcsec:.2f} arcsec, share "
+        f"{ {j: round(v, 3) for j, v in out.share.items()} }, p interior {out.p_interior:.0f} MPa "
+        f"(nodal max {pmax:.0f}), torque balance {tot / torque1:.3f}")
+    done.write_text(json.dumps(asdict(out), indent=1))
+    return out
+
+
+def interior(lm: BevelLoadedModel, L1, Rn1, L2, Rn2, edge: float) -> np.ndarray:
+    """Points (pinion and gear axial sections, mm) farther than ``edge`` mm from both members' tops, toes and heels
+    (a member's root is the other's top)."""
+    out = np.ones(np.shape(L1), bool)
+    for M, L, Rn in ((lm.gaps.P, L1, Rn1), (lm.gaps.G, L2, Rn2)):
+        out &= (M._cones(L)[1] - Rn > edge) & (L > M.Ai + edge) & (L < M.A0 - edge)
+    return out
+
+
+def _interior(lm: BevelLoadedModel, X: np.ndarray, T2: np.ndarray, edge: float) -> np.ndarray:
+    """:func:`interior` of world points X on the pinion (world = pinion frame at its deck angle ``T1 = rz``)."""
+    bl = lm.pair.blank
+    L1, Rn1 = to_pitch_coords(X, bl.pinion.pitch_angle)
+    Xg = (X - T2[:3, 3]) @ T2[:3, :3]
+    L2, Rn2 = to_pitch_coords(Xg, bl.gear.pitch_angle)
+    return interior(lm, L1, Rn1, L2, Rn2, edge)
+
+
+def _fit_peak(X: np.ndarray, p: np.ndarray, radius: float) -> float:
+    """Peak of p from a quadratic fit of p^2 (elliptic Hertz: p^2 is quadratic) around the highest node."""
+    i = int(np.argmax(p))
+    m = (np.linalg.norm(X - X[i], axis=1) < radius) & (p > 0.3 * p[i])
+    if m.sum() < 8:
+        return float(p[i])
+    Y = X[m] - X[i]
+    u, s, vt = np.linalg.svd(Y - Y.mean(0), full_matrices=False)
+    a, b = Y @ vt[0], Y @ vt[1]
+    A = np.column_stack([np.ones_like(a), a, b, a * a, a * b, b * b])
+    c = np.linalg.lstsq(A, p[m] ** 2, rcond=None)[0]
+    H = np.array([[2 * c[3], c[4]], [c[4], 2 * c[5]]])
+    if np.all(np.linalg.eigvalsh(H) < 0):
+        x = np.linalg.solve(H, -c[1:3])
+        if np.hypot(*x) < radius:
+            return float(np.sqrt(max(c[0] + 0.5 * c[1:3] @ x, 0.0)))
+    return float(np.sqrt(max(np.max(A @ c), 0.0)))
