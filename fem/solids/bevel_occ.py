@@ -36,7 +36,7 @@ import numpy as np
 from geometry.bevel.sampling import flank_at
 from geometry.flank import Flank
 
-from .segment_gmsh import extract_mesh
+from .segment_gmsh import extract_mesh, fresh_model
 from .session import gmsh_session
 from .spec import SegmentMesh
 
@@ -287,11 +287,7 @@ def build_bevel_solid(spec: BevelSolidSpec, progress=None) -> SegmentMesh:
     t0 = time.perf_counter()
     shift = _shift(spec)
     with gmsh_session(False):
-        gmsh.model.add("bevel_occ")
-        old = {k: gmsh.option.getNumber(k) for k in _OPTIONS}
-        try:
-            for k, v in _OPTIONS.items():
-                gmsh.option.setNumber(k, v)
+        with fresh_model("bevel_occ", _OPTIONS):
             occ = gmsh.model.occ
             cad = Path(spec.cad_cache) / f"bevel_{_cad_key(spec)}.brep" if spec.cad_cache else None
             if cad is not None and cad.exists():
@@ -311,10 +307,6 @@ def build_bevel_solid(spec: BevelSolidSpec, progress=None) -> SegmentMesh:
             gmsh.model.mesh.generate(3)
             gmsh.model.mesh.setOrder(2)
             nodes, tets, facets = extract_mesh(labels, 2)
-        finally:
-            gmsh.model.remove()
-            for k, v in old.items():
-                gmsh.option.setNumber(k, v)
     moved = _snap(spec, nodes, facets)
     spec.extra.update(snap_mm=moved, shift=shift)
     say(f"  bevel solid: {len(nodes)} nodes, {len(tets)} C3D10, largest snap {1e3 * moved:.2f} um "

@@ -22,7 +22,8 @@ from fem.hertz import elliptic_hertz
 from .model import BevelLoadedModel
 
 
-__all__ = ["PairMinimum", "PairCells", "pair_minimum", "pair_minima", "pair_cells", "cells_of", "window"]
+__all__ = ["PairMinimum", "PairCells", "pair_minimum", "pair_minima", "pair_cells", "cells_of", "window",
+           "pair_hertz"]
 
 _STENCIL = np.array([[0, 0], [1, 0], [-1, 0], [0, 1], [0, -1], [1, 1], [1, -1], [-1, 1], [-1, -1]], float)
 
@@ -161,14 +162,20 @@ def pair_minima(lm: BevelLoadedModel, phi1: float, js, scan: tuple[int, int] = (
     return out
 
 
+def pair_hertz(lm: BevelLoadedModel, pm: PairMinimum, load2: float):
+    """Elliptic Hertz of the whole gear torque ``load2`` (N mm) on one pair at its first contact, and the relative
+    curvatures used (lambda floored: a flat direction is capped at 0.75 face width, the other at 1e-3 1/mm)."""
+    cap = 0.75 * lm.pair.blank.face_width
+    lam = np.maximum(pm.lam, [2 * 1e-3 / cap ** 2, 1e-3])
+    return elliptic_hertz(load2 / pm.v2, 0.5 * lam[0], 0.5 * lam[1], lm.bodies.young, lm.bodies.poisson), lam
+
+
 def window(lm: BevelLoadedModel, pm: PairMinimum, load2: float, widen: float = 1.0) -> tuple[float, float]:
     """Window semi-axes (along the major, across the minor axis), mm, for the gear torque ``load2`` (N mm); ``widen``
     multiplies the window approach (a pair whose loaded cells reached the window's rim)."""
     bl = lm.pair.blank
-    F = load2 / pm.v2
     cap = 0.75 * bl.face_width
-    lam = np.maximum(pm.lam, [2 * 1e-3 / cap ** 2, 1e-3])
-    hz = elliptic_hertz(F, 0.5 * lam[0], 0.5 * lam[1], lm.bodies.young, lm.bodies.poisson)
+    hz, lam = pair_hertz(lm, pm, load2)
     ka, kb = lm.fid.window
     a = min(np.sqrt(2 * ka * widen * hz.delta / lam[0]), cap)
     b = min(np.sqrt(2 * kb * widen * hz.delta / lam[1]), 0.5 * bl.whole_depth)

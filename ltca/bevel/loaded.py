@@ -22,7 +22,7 @@ from fem.contact import ContactNotConverged, solve_contact
 from fem.halfspace import surface_influence
 
 from ..errors import ConvergenceError
-from .cells import PairCells, cells_of, pair_minima
+from .cells import PairCells, cells_of, pair_hertz, pair_minima
 from .loaded_model import LOADED, BevelLoadedModel, body_t
 
 __all__ = ["BevelPosition", "solve_position"]
@@ -128,7 +128,8 @@ def _solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: floa
     w1, w2 = _weights_of(lm, np.array([first.j]), lm.gaps.gaps(phi1 + first.j * lm.gaps.c1, np.array([first.t]),
                                                                 np.array([first.L]), extend=True))
     bend = float(T2 / first.v2 * ((w1 @ (w1 @ b1.C).T)[0, 0] + (w2 @ (w2 @ b2.C).T)[0, 0]))
-    use = [m for m in mins if m is first or (m.g - g_min) * m.v2 <= 5.0 * _hertz_delta(lm, m, T2) + 3.0 * abs(bend)]
+    use = [m for m in mins
+           if m is first or (m.g - g_min) * m.v2 <= 5.0 * pair_hertz(lm, m, T2)[0].delta + 3.0 * abs(bend)]
     widen: dict[int, float] = {}
     for _ in range(len(mins) + 6):
         cells = [c for c in cells_of(lm, phi1, use, T2, widen) if len(c.t)]
@@ -161,7 +162,8 @@ def _solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: floa
     return BevelPosition(
         float(phi1), float(-(gm + sol.approach - lm.g_ref)), float(-(min(g_min, gm) - lm.g_ref)), float(sol.approach),
         pair, sy["t"], sy["L"], cat("L1"), cat("Rn1"), cat("L2"), cat("Rn2"), np.concatenate([c.xi for c in cells]),
-        np.concatenate([c.eta for c in cells]), cat("r1"), area, F, F / area, g0, edge, np.concatenate([c.edge_dist for c in cells]), shares,
+        np.concatenate([c.eta for c in cells]), cat("r1"), area, F, F / area, g0, edge,
+        np.concatenate([c.edge_dist for c in cells]), shares,
         b1.root_max(W1.T @ F), b2.root_max(W2.T @ F), ellipse, abs(F @ v2 - T2) / T2, float(F @ v1 / torque1),
         sol.iterations, sol.residual)
 
@@ -188,13 +190,6 @@ def _system(lm: BevelLoadedModel, cells: list[PairCells]) -> dict:
         C[np.diag_indices(len(C))] += 1e-6 * np.mean(np.diag(C))
     out.update(C=0.5 * (C + C.T), W1=W1, W2=W2)
     return out
-
-
-def _hertz_delta(lm: BevelLoadedModel, m, T2: float) -> float:
-    from fem.hertz import elliptic_hertz
-    cap = 0.75 * lm.pair.blank.face_width
-    lam = np.maximum(m.lam, [2e-3 / cap ** 2, 1e-3])
-    return elliptic_hertz(T2 / m.v2, 0.5 * lam[0], 0.5 * lam[1], lm.bodies.young, lm.bodies.poisson).delta
 
 
 def _weights_of(lm: BevelLoadedModel, j: np.ndarray, res):

@@ -15,7 +15,7 @@ from fem.bevel_compliance import BevelComplianceSpec, bevel_compliance
 from fem.solids.bevel_body import convex_shift
 from geometry.bevel.gaps import MeshGaps
 from geometry.bevel.gaps import depth_fraction as body_t
-from geometry.bevel.generation import generate_flank
+from geometry.bevel.generation import MeshingError, generate_flank
 from geometry.bevel.tca import Assembly, BevelPair
 
 from .model import LOADED, MESHED, BevelBodies, BevelFidelity, BevelLoadedModel
@@ -26,8 +26,16 @@ __all__ = ["BevelFidelity", "BevelBodies", "BevelLoadedModel", "prepare_bodies",
 def _member(pair: BevelPair, member: str, side: str, fid: BevelFidelity, E: float, nu: float, cache_dir, say):
     bl = pair.blank
     mb, cut = bl.member(member), (pair.pinion if member == "pinion" else pair.gear)
-    off = 0.03 * bl.data.module
-    fl = {s: generate_flank(cut.flank(s), bl, member, 9, 13, off) for s in ("concave", "convex")}
+    # the body's flank grid starts a little above the root cone; where a cutter's fillet does not reach that low
+    # (a synthesised pinion of another pair), start where the TCA's own grid starts (half the clearance)
+    offs = (0.03 * bl.data.module, 0.5 * (bl.pinion.dedendum - bl.gear.addendum))
+    for k, off in enumerate(offs):
+        try:
+            fl = {s: generate_flank(cut.flank(s), bl, member, 9, 13, off) for s in ("concave", "convex")}
+            break
+        except MeshingError:
+            if k == len(offs) - 1:
+                raise
     jm = 6
     rn = fl["concave"].meta["Rn"][:, jm]
     t_pitch = float(np.interp(0.0, rn, fl["concave"].u))
