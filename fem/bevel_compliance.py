@@ -32,7 +32,8 @@ class BevelComplianceSpec:
     side : the loaded flank ("concave" or "convex");  loaded : teeth whose ``side`` flank carries load;
     teeth : teeth meshed (the loaded ones plus a neighbour each side);  grid : (n_t, n_L) compliance grid nodes;
     depth : read depth d of the regular part (also 2d), mm, capped at 15 % of the local tooth thickness; 0: no
-    near field;  rim_depth : blank under the root cone, mm;  divisions : mesh divisions of
+    near field;  rim_depth : blank under the root cone, mm (without a support);  support : the mounting in
+    service, ``("seat", rho)`` or ``("face", Z)`` (:class:`fem.solids.bevel_body.BevelBodySpec`);  divisions : mesh divisions of
     :class:`fem.solids.bevel_body.BevelBodySpec`;  root_points : (along the fillet, along the face).
     """
     side: str
@@ -45,6 +46,7 @@ class BevelComplianceSpec:
     rim_depth: float
     divisions: tuple[int, int, int, int, int, int] = (16, 8, 6, 4, 4, 24)
     root_points: tuple[int, int] = (4, 7)
+    support: tuple[str, float] | None = None
 
     def __post_init__(self) -> None:
         if self.side not in ("concave", "convex"):
@@ -91,7 +93,8 @@ def bevel_compliance(concave: Flank, convex: Flank, z: int, root_offset: float, 
     """
     say = progress or (lambda msg: None)
     t0 = time.perf_counter()
-    body = BevelBodySpec(concave, convex, z, root_offset, convex_shift, spec.teeth, spec.rim_depth, spec.divisions)
+    body = BevelBodySpec(concave, convex, z, root_offset, convex_shift, spec.teeth, spec.rim_depth, spec.divisions,
+                         spec.support)
     mesh = build_bevel_body(body, cache_dir=cache_dir)
     t_mesh = time.perf_counter() - t0
     say(f"meshed bevel z={z}: {len(mesh.nodes)} nodes, {len(mesh.tets)} tets ({t_mesh:.1f} s)")

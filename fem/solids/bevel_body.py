@@ -12,8 +12,9 @@ spiral twist:
   surfaces (:func:`geometry.bevel.sampling.flank_at`); below the flank grid's lowest row (a small root offset
   above the root cone, where the fillet still makes a fair angle with the root cone) the fillet is continued
   along its tangent down to the root cone (a sliver of height ``root_offset``; stated, not hidden).
-* **Blank** (the whole 360 deg): the root cone down to a bottom surface parallel to it ``rim_depth`` below
-  (the pinion's shaft seat, the gear's back face under its rim), bounded by the front and back cones.  Under
+* **Blank** (the whole 360 deg): the root cone down to the member's mounting (``support``: the pinion's
+  shaft seat, a cylinder; the gear's back face, a plane normal to its axis), bounded by the front and back
+  cones continued straight down; or, without a support, a bottom parallel to the root cone ``rim_depth`` below.  Under
   the meshed teeth the blank's polar nodes follow the teeth (and their spiral twist); the other teeth are left
   out (their root cone runs on), as ``far_teeth = "none"`` of the cylindrical body.  The bottom surface is
   the support (facet group ``"bore"``), held as on a rigid shaft or a rigid mounting face.
@@ -62,7 +63,13 @@ class BevelBodySpec:
     teeth : tuple of int
         Teeth meshed; tooth k is tooth 0 turned by ``k 2 pi / z`` about +z.
     rim_depth : float
-        Blank depth under the root cone, mm.
+        Blank depth under the root cone, mm (used where ``support`` is None).
+    support : (kind, value) or None
+        The member's mounting in service, the blank's bottom: ``("seat", rho)`` the pinion's shaft seat, a
+        cylinder of radius rho (mm); ``("face", Z)`` the gear's back (mounting) face, the plane at axial
+        position Z (mm, body frame).  The blank then runs from the root cone down to it between the front
+        and back cones (continued straight below the toe and heel).  None: a bottom parallel to the root cone
+        ``rim_depth`` below it.
     divisions : (n_L, n_t, n_s, n_g, n_rim, n_far)
         Cells along the face, up the tooth, across a tooth, across a space, down the blank, and over the rest of
         the circle.
@@ -75,8 +82,12 @@ class BevelBodySpec:
     teeth: tuple[int, ...] = (-2, -1, 0, 1, 2)
     rim_depth: float = 10.0
     divisions: tuple[int, int, int, int, int, int] = (16, 8, 6, 4, 4, 24)
+    support: tuple[str, float] | None = None
 
     def __post_init__(self) -> None:
+        if self.support is not None and (len(self.support) != 2 or self.support[0] not in ("seat", "face")
+                                         or not np.isfinite(self.support[1])):
+            raise ValueError(f"support = {self.support!r}: ('seat', radius mm) or ('face', Z mm)")
         if self.z < 3:
             raise ValueError(f"z = {self.z}: at least 3 teeth")
         if not self.root_offset > 0:
@@ -93,7 +104,7 @@ class BevelBodySpec:
         h = outline_hash(_VERSION, self.concave.points, self.convex.points, np.asarray(self.concave.v),
                          np.asarray(self.concave.meta["Z"]), np.asarray(self.concave.meta["rho"]))
         h.update(repr((self.z, self.root_offset, self.convex_shift, self.teeth, self.rim_depth,
-                       self.divisions)).encode())
+                       self.divisions) + ((self.support,) if self.support else ())).encode())
         return h.hexdigest()[:20]
 
 
@@ -171,24 +182,52 @@ def _grid_nodes(spec: BevelBodySpec):
     f = np.arange(1, nfar)[:, None] / nfar
     rows.append(a[None] + f * (b - a)[None])
     th_rim = np.concatenate(rows, 0)                        # (I, nL)
-    # axial section: tooth rows at (t, L); blank rows from the root cone down by rim_depth (normal to it)
+    # axial section: tooth rows at (t, L); blank rows from the root cone down to the support
     Tg, Lg = np.meshgrid(t, L, indexing="ij")
     Zt, Rt = axial_target(fl, Tg, Lg)                       # (nt, nL)
-    g_root = np.arctan2(np.diff(Rt[0])[0], np.diff(Zt[0])[0])   # direction of the root-cone generatrix
-    down = np.array([np.sin(g_root), -np.cos(g_root)])      # towards the axis, normal to the root cone
-    if down[1] > 0:
-        down = -down
+    Zb, Rb = _bottom(spec, Zt, Rt)                          # (nL,) the blank's bottom under each column
+    if spec.support is not None:                            # n_rim rows per 1.2 tooth heights of blank
+        height = np.hypot(Zt[-1] - Zt[0], Rt[-1] - Rt[0]).max()
+        nrim = max(nrim, int(np.ceil(nrim * np.hypot(Zb - Zt[0], Rb - Rt[0]).max() / (1.2 * height))))
     frac = (np.arange(nrim + 1)[::-1] / nrim) ** 1.5        # 1 at the bottom .. 0 at the root cone, graded
-    Zr = Zt[0][None, :] + frac[:, None] * spec.rim_depth * down[0]
-    Rr = Rt[0][None, :] + frac[:, None] * spec.rim_depth * down[1]
-    if np.any(Rr <= 0):
-        raise ValueError(f"rim_depth = {spec.rim_depth} mm reaches the axis: at most "
-                         f"{float(np.min(Rt[0] / -down[1])):.2f} mm")
+    Zr = Zt[0][None, :] + frac[:, None] * (Zb - Zt[0])[None, :]
+    Rr = Rt[0][None, :] + frac[:, None] * (Rb - Rt[0])[None, :]
     rim = np.stack([Rr[None] * np.cos(th_rim[:, None]), Rr[None] * np.sin(th_rim[:, None]),
                     np.broadcast_to(Zr[None], (len(th_rim),) + Zr.shape)], -1)      # (I, nrim+1, nL, 3)
     tooth = np.stack([Rt[None, None] * np.cos(th_t), Rt[None, None] * np.sin(th_t),
                       np.broadcast_to(Zt[None, None], th_t.shape)], -1)            # (nT, ns+1, nt, nL, 3)
     return rim, tooth
+
+
+def _bottom(spec: BevelBodySpec, Zt: np.ndarray, Rt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The blank's bottom (Z, rho) under each column of the axial-section grid (Zt, Rt) (nt, nL), mm."""
+    if spec.support is None:
+        g_root = np.arctan2(np.diff(Rt[0])[0], np.diff(Zt[0])[0])   # direction of the root-cone generatrix
+        down = np.array([np.sin(g_root), -np.cos(g_root)])      # towards the axis, normal to the root cone
+        if down[1] > 0:
+            down = -down
+        Zb, Rb = Zt[0] + spec.rim_depth * down[0], Rt[0] + spec.rim_depth * down[1]
+        if np.any(Rb <= 0):
+            raise ValueError(f"rim_depth = {spec.rim_depth} mm reaches the axis: at most "
+                             f"{float(np.min(Rt[0] / -down[1])):.2f} mm")
+        return Zb, Rb
+    kind, value = spec.support
+    corners = []
+    for j in (0, -1):                                       # toe and heel: the front / back cone continued down
+        d = np.array([Zt[0, j] - Zt[-1, j], Rt[0, j] - Rt[-1, j]])
+        d /= np.hypot(*d)
+        k = 1 if kind == "seat" else 0                      # the coordinate the support fixes
+        if d[k] * (value - (Zt[0, j], Rt[0, j])[k]) <= 0:
+            raise ValueError(f"support = {spec.support!r}: the {('toe', 'heel')[j]}'s front/back cone does not "
+                             f"reach it below the root cone (root at Z {Zt[0, j]:.2f}, rho {Rt[0, j]:.2f} mm)")
+        s = (value - (Zt[0, j], Rt[0, j])[k]) / d[k]
+        corners.append((Zt[0, j] + s * d[0], Rt[0, j] + s * d[1]))
+    w = np.linspace(0.0, 1.0, Zt.shape[1])
+    Zb = (1 - w) * corners[0][0] + w * corners[1][0]
+    Rb = (1 - w) * corners[0][1] + w * corners[1][1]
+    if np.any(Rb <= 0) or np.any((Rt[0] - Rb) * np.sign(Rt[0, 0] - Rb[0]) < 0):
+        raise ValueError(f"support = {spec.support!r}: the blank's bottom crosses the axis or the root cone")
+    return Zb, Rb
 
 
 def _kuhn(corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

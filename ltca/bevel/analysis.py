@@ -95,7 +95,8 @@ def run_bevel_ltca(case_path: str, out: str = "out", positions: int | None = Non
         side = "concave" if T > 0 else "convex"
         if side not in bodies:
             t1 = time.perf_counter()
-            bodies[side] = prepare_bodies(pair, side, fid, case["young"], case["poisson"], cache, say)
+            bodies[side] = prepare_bodies(pair, side, fid, case["young"], case["poisson"], cache, say,
+                                          mounting=case["mounting"])
             timings[f"compliance_{FLANK[side]}"] = time.perf_counter() - t1
             t1 = time.perf_counter()
             runs[side] = {"lm": loaded_model(pair, bodies[side], asm)}

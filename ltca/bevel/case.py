@@ -14,6 +14,7 @@ from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
+from .model import BevelMounting, root_point
 from ..validation import DesignError, Int, List, Num, Str, Table, check_kind, check_table
 
 __all__ = ["load_bevel_case", "bevel_case_from_data"]
@@ -50,12 +51,20 @@ _ASSEMBLY = Table({
 }, required=False)
 _MATERIAL = Table({"youngs_modulus_mpa": Num(1e3, 1e6, "MPa", default=206000.0),
                    "poisson_ratio": Num(0.0, 0.499, "", default=0.3)}, required=False)
+_MOUNTING = Table({
+    "pinion_seat_diameter_mm": Num(1, 5000, "mm", default=None,
+                                   note="pinion shaft seat, held as on a rigid shaft; default 0.45 x the toe's "
+                                        "root diameter; below the toe's root diameter less one whole depth"),
+    "gear_mounting_distance_mm": Num(1, 1e4, "mm", default=None,
+                                     note="pitch apex to the gear's back mounting face, held rigidly; default "
+                                          "1.2 whole depths behind the heel root; behind the heel root"),
+}, required=False)
 _ANALYSIS = Table({"positions": Int(4, 400, default=21, note="positions per mesh cycle"),
                    "fidelity": Str(("coarse", "default", "fine"), default="default")}, required=False)
 _CASE = Table({"bevel": _BEVEL, "case": Table({"name": Str(non_empty=True, max_len=200, default=None),
                                                "description": Str(default=""), "source": Str(default="")}),
                "load": Table({"torque_nm": Num(-1e5, 1e5, "N m")}, required=False),
-               "assembly": _ASSEMBLY, "material": _MATERIAL, "analysis": _ANALYSIS})
+               "assembly": _ASSEMBLY, "material": _MATERIAL, "analysis": _ANALYSIS, "mounting": _MOUNTING})
 
 
 def load_bevel_case(case_path: str | Path) -> dict:
@@ -86,10 +95,11 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
                                pressure_angle=np.deg2rad(b["pressure_angle_deg"]),
                                shaft_angle=np.deg2rad(b.get("shaft_angle_deg", 90.0)), hand=b["gear_hand"],
                                cutter_radius=float(b["cutter_radius_mm"]), taper=b.get("taper", "standard"))
-        design_blank(basic)
+        blank = design_blank(basic)
     except ValueError as exc:
         raise DesignError(f"bevel blank: {exc}", ("bevel.face_width_mm", "bevel.module_mm", "bevel.pinion_teeth",
                                                   "bevel.gear_teeth", "bevel.cutter_radius_mm"), file=f) from None
+    mounting = _mounting(c.get("mounting") or {}, blank, f)
     name = c["case"]["name"] or stem
     asm = c.get("assembly") or {}
     mat = c.get("material") or {}
@@ -98,7 +108,25 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
                 assembly=dict(E=float(asm.get("E_mm", 0.0)), P=float(asm.get("P_mm", 0.0)),
                               G=float(asm.get("G_mm", 0.0)), d_sigma=float(np.deg2rad(asm.get("sigma_deg", 0.0)))),
                 young=float(mat.get("youngs_modulus_mpa", 206000.0)), poisson=float(mat.get("poisson_ratio", 0.3)),
-                positions=int(an.get("positions", 21)), fidelity=str(an.get("fidelity", "default")))
+                positions=int(an.get("positions", 21)), fidelity=str(an.get("fidelity", "default")),
+                mounting=mounting)
+
+
+def _mounting(m: dict, blank, f: str | None) -> BevelMounting:
+    """``[mounting]``: the shaft seat inside the pinion's toe, the gear's back face behind its heel."""
+    out = BevelMounting(m.get("pinion_seat_diameter_mm"), m.get("gear_mounting_distance_mm"))
+    d_toe = 2 * root_point(blank, "pinion", "toe")[1]
+    if out.pinion_seat_diameter is not None and out.pinion_seat_diameter > d_toe - 2 * blank.whole_depth:
+        raise CaseError("mounting.pinion_seat_diameter_mm", out.pinion_seat_diameter,
+                        f"below {d_toe - 2 * blank.whole_depth:.2f} mm (the pinion's root diameter at the toe "
+                        f"{d_toe:.2f} mm less two whole depths: the blank must carry the teeth)", f)
+    z_heel = root_point(blank, "gear", "heel")[0]
+    lo, hi = z_heel + 0.3 * blank.whole_depth, z_heel + 20 * blank.whole_depth
+    if out.gear_mounting_distance is not None and not lo <= out.gear_mounting_distance <= hi:
+        raise CaseError("mounting.gear_mounting_distance_mm", out.gear_mounting_distance,
+                        f"in [{lo:.2f}, {hi:.2f}] mm (0.3 to 20 whole depths behind the gear's heel root at "
+                        f"{z_heel:.2f} mm from the pitch apex)", f)
+    return out
 
 
 def _torques(data: dict, f: str) -> tuple[float, ...]:

@@ -18,12 +18,15 @@ from geometry.bevel.gaps import depth_fraction as body_t
 from geometry.bevel.generation import MeshingError, generate_flank
 from geometry.bevel.tca import Assembly, BevelPair
 
-from .model import LOADED, MESHED, BevelBodies, BevelFidelity, BevelLoadedModel
+from .model import LOADED, MESHED, BevelBodies, BevelFidelity, BevelLoadedModel, BevelMounting
 
-__all__ = ["BevelFidelity", "BevelBodies", "BevelLoadedModel", "prepare_bodies", "loaded_model", "body_t", "LOADED",
-           "MESHED"]
+__all__ = ["BevelFidelity", "BevelMounting", "BevelBodies", "BevelLoadedModel", "prepare_bodies", "member_flanks",
+           "loaded_model", "body_t", "LOADED", "MESHED"]
 
-def _member(pair: BevelPair, member: str, side: str, fid: BevelFidelity, E: float, nu: float, cache_dir, say):
+def member_flanks(pair: BevelPair, member: str) -> tuple[dict, float, float]:
+    """The member's two generated flanks on the body's axial grid, the grid's root offset (mm) and the rotation
+    of the convex flank that gives the design thickness (rad), as :class:`fem.solids.bevel_body.BevelBodySpec`
+    takes them."""
     bl = pair.blank
     mb, cut = bl.member(member), (pair.pinion if member == "pinion" else pair.gear)
     # the body's flank grid starts a little above the root cone; where a cutter's fillet does not reach that low
@@ -42,22 +45,31 @@ def _member(pair: BevelPair, member: str, side: str, fid: BevelFidelity, E: floa
     # design thickness on the pitch cone at the mean point (a synthesised pinion's two flanks are set apart)
     thick = mb.mean_normal_thickness / (np.cos(bl.data.spiral_angle) * mb.mean_pitch_radius)
     shift = convex_shift(fl["concave"], fl["convex"], mb.z, t_pitch, float(fl["concave"].v[jm]), thick)
-    whole = mb.addendum + mb.dedendum
-    rim = 1.2 * whole if member == "pinion" else 1.5 * whole
+    return fl, off, shift
+
+
+def _member(pair: BevelPair, member: str, side: str, fid: BevelFidelity, E: float, nu: float, support, cache_dir,
+            say):
+    mb = pair.blank.member(member)
+    fl, off, shift = member_flanks(pair, member)
+    rim = 1.2 * (mb.addendum + mb.dedendum)                 # unused: the blank runs down to ``support``
     spec = BevelComplianceSpec(side, LOADED, MESHED, fid.grid, fid.depth if fid.near_field else 0.0, E, nu, rim,
-                               fid.divisions)
+                               fid.divisions, support=support)
     return bevel_compliance(fl["concave"], fl["convex"], mb.z, off, shift, spec, cache_dir, say), off
 
 
 def prepare_bodies(pair: BevelPair, pinion_side: str, fid: BevelFidelity = BevelFidelity(), young: float = 206000.0,
-                   poisson: float = 0.3, cache_dir=None, progress=None) -> BevelBodies:
-    """Both members' compliance for the flank pair with the pinion ``pinion_side`` loaded."""
+                   poisson: float = 0.3, cache_dir=None, progress=None,
+                   mounting: BevelMounting = BevelMounting()) -> BevelBodies:
+    """Both members' compliance for the flank pair with the pinion ``pinion_side`` loaded, each body down to its
+    ``mounting`` (the pinion's shaft seat, the gear's back face)."""
     say = progress or (lambda msg: None)
     t0 = time.perf_counter()
     gear_side = "convex" if pinion_side == "concave" else "concave"
-    b1, off1 = _member(pair, "pinion", pinion_side, fid, young, poisson, cache_dir, say)
-    b2, off2 = _member(pair, "gear", gear_side, fid, young, poisson, cache_dir, say)
-    return BevelBodies(pinion_side, b1, b2, off1, off2, fid, young, poisson,
+    sup = mounting.supports(pair.blank)
+    b1, off1 = _member(pair, "pinion", pinion_side, fid, young, poisson, sup["pinion"], cache_dir, say)
+    b2, off2 = _member(pair, "gear", gear_side, fid, young, poisson, sup["gear"], cache_dir, say)
+    return BevelBodies(pinion_side, b1, b2, off1, off2, fid, young, poisson, mounting,
                        {"compliance": time.perf_counter() - t0})
 
 

@@ -5,11 +5,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from fem.compliance import BodyCompliance
 from geometry.bevel.gaps import MeshGaps
 from geometry.bevel.tca import Assembly, BevelPair
 
-__all__ = ["LOADED", "MESHED", "BevelFidelity", "BevelBodies", "BevelLoadedModel"]
+__all__ = ["LOADED", "MESHED", "BevelFidelity", "BevelMounting", "BevelBodies", "BevelLoadedModel"]
 
 #: teeth of each member that can carry load (pair j: pinion tooth +j, gear tooth -j) and the meshed ones
 LOADED = (-1, 0, 1)
@@ -44,6 +46,42 @@ class BevelFidelity:
         return table[name]
 
 
+@dataclass(frozen=True)
+class BevelMounting:
+    """How both members are held in service: the blank of each body runs down to its mounting (mm).
+
+    pinion_seat_diameter : diameter of the pinion's shaft seat, a cylinder held as on a rigid shaft; None:
+        0.45 x the pinion's root diameter at the toe (an integral shaft pinion).
+    gear_mounting_distance : axial distance from the pitch apex (the crossing point) to the gear's back
+        mounting face, a plane held rigidly; None: the face 1.2 whole depths behind the heel's root, along the
+        back cone.
+    """
+    pinion_seat_diameter: float | None = None
+    gear_mounting_distance: float | None = None
+
+    def supports(self, blank) -> dict[str, tuple[str, float]]:
+        """``{"pinion": ("seat", rho), "gear": ("face", Z)}`` in each member's body frame (mm), for
+        :class:`fem.solids.bevel_body.BevelBodySpec`; ``blank`` is the pair's
+        :class:`geometry.bevel.blank.BevelBlank`."""
+        toe1, heel2 = root_point(blank, "pinion", "toe"), root_point(blank, "gear", "heel")
+        seat = 0.45 * toe1[1] if self.pinion_seat_diameter is None else 0.5 * self.pinion_seat_diameter
+        if self.gear_mounting_distance is None:
+            g = blank.member("gear").pitch_angle
+            face = heel2[0] + np.sin(g) * 1.2 * blank.whole_depth
+        else:
+            face = self.gear_mounting_distance
+        return {"pinion": ("seat", float(seat)), "gear": ("face", float(face))}
+
+
+def root_point(blank, member: str, end: str) -> np.ndarray:
+    """(Z, rho) of the root cone at the toe or heel of ``member``, body frame, mm."""
+    mb = blank.member(member)
+    L = blank.inner_cone_distance if end == "toe" else blank.outer_cone_distance
+    g = mb.pitch_angle
+    Rn = -(mb.dedendum - (blank.outer_cone_distance - L) * np.tan(mb.dedendum_angle))
+    return np.array([L * np.cos(g) - Rn * np.sin(g), L * np.sin(g) + Rn * np.cos(g)])
+
+
 @dataclass
 class BevelBodies:
     """Compliance of both members for one flank pair (pinion ``side``), reusable over assemblies and torques."""
@@ -55,6 +93,7 @@ class BevelBodies:
     fid: BevelFidelity
     young: float
     poisson: float
+    mounting: BevelMounting = BevelMounting()
     timings: dict = field(default_factory=dict)
 
 

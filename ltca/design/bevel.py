@@ -189,7 +189,7 @@ class BevelBackend:
                             self.file) from None
         for side in self.sides:
             self.bodies[side] = prepare_bodies(pair, side, self.fid, self.case["young"], self.case["poisson"],
-                                               None, self.progress)
+                                               None, self.progress, mounting=self.case["mounting"])
         self.prepare_seconds = time.perf_counter() - t0
 
     def _cycle(self, pair: BevelPair, torque_nm: float, asm: Assembly | None = None):

@@ -17,6 +17,7 @@ import datetime
 import json
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -40,7 +41,8 @@ def bevel_model(case_path: str, fidelity: str = "default", cache=None, say=None)
     case = load_bevel_case(case_path)
     t0 = time.perf_counter()
     pair = build_pair(case)
-    bodies = prepare_bodies(pair, "concave", BevelFidelity.named(fidelity), case["young"], case["poisson"], cache, say)
+    bodies = prepare_bodies(pair, "concave", BevelFidelity.named(fidelity), case["young"], case["poisson"], cache, say,
+                            mounting=case["mounting"])
     return case, loaded_model(pair, bodies, Assembly(**case["assembly"])), time.perf_counter() - t0
 
 
@@ -88,7 +90,9 @@ def run_bevel_validation(case_path: str, fractions=(0.0, 0.4), out: str = "out/v
     case, lm, t_comp = bevel_model(case_path, cache=str(outdir / "cache"), say=say)
     torque = middle_torque(case)
     cycle = 2 * np.pi / lm.pair.blank.pinion.z
-    ladder_st = bevel_ladder(max(refine, level) + 1, h0)
+    sup = case["mounting"].supports(lm.pair.blank)          # the case's mounting, read by both models
+    ladder_st = [replace(st, r_bore1=sup["pinion"][1], back_face_z=sup["gear"][1])
+                 for st in bevel_ladder(max(refine, level) + 1, h0)]
 
     def ccx(f, st):
         return solve_bevel_ccx(lm, f * cycle, torque * 1e3, st, outdir / f"ccx_{f:+.3f}_h{1e3 * st.h_zone:.0f}",

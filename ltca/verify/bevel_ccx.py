@@ -56,6 +56,7 @@ class BevelCcxSettings:
     preload_arcsec: float = 20.0      # gear arcsec of initial overclosure
     r_bore1: float = 9.0
     back_depth: float = 1.2
+    back_face_z: float | None = None  # the gear's back face (mounting distance, mm); None: back_depth below the heel
     edge_mm: float = 0.8
     threads: int = 2
 
@@ -102,6 +103,8 @@ def _outline(lm: BevelLoadedModel, member: str, st: BevelCcxSettings) -> tuple[n
         return np.array([A, B, B + d * (B[1] - st.r_bore1) / np.cos(g), A + d * (A[1] - st.r_bore1) / np.cos(g)]), \
             {"bore": 2}
     C = B + d * st.back_depth * bl.whole_depth              # gear: down to the back (mounting) face Z = Z_C
+    if st.back_face_z is not None:
+        C = B + d * (st.back_face_z - B[0]) / d[0]
     return np.array([A, B, C, A + d * (C[0] - A[0]) / d[0]]), {"back": 2}
 
 

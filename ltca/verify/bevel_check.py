@@ -82,7 +82,8 @@ def run_bevel_validate(case_path: str, out: str, progress: bool = True) -> int:
     for near in (True, False):
         fid = BevelFidelity() if near else BevelFidelity(name="default-no-near-field", near_field=False)
         t0 = time.perf_counter()
-        bodies = prepare_bodies(pair, "concave", fid, case["young"], case["poisson"], progress=say)
+        bodies = prepare_bodies(pair, "concave", fid, case["young"], case["poisson"], progress=say,
+                                mounting=case["mounting"])
         lm = loaded_model(pair, bodies)
         h = hertz_check(pair, lm)
         h["seconds"] = time.perf_counter() - t0
@@ -138,7 +139,7 @@ def run_bevel_convergence(case_path: str, out: str, positions: int = 8, torque_n
     for name in ("coarse", "default", "fine"):
         t0 = time.perf_counter()
         bodies = prepare_bodies(pair, "concave", BevelFidelity.named(name), case["young"], case["poisson"],
-                                progress=say)
+                                progress=say, mounting=case["mounting"])
         t1 = time.perf_counter()
         f = _cycle_figures(loaded_model(pair, bodies), positions, torque_nm)
         f.update(fidelity=name, compliance_s=t1 - t0, positions_s=time.perf_counter() - t1,
@@ -171,7 +172,8 @@ def run_bevel_bench(case_path: str, repeat: int = 3, positions: int = 21, fideli
         pair = build_pair(case)
         t["synthesis"] = time.perf_counter() - t0
         t0 = time.perf_counter()
-        bodies = prepare_bodies(pair, "concave", BevelFidelity.named(fidelity), case["young"], case["poisson"])
+        bodies = prepare_bodies(pair, "concave", BevelFidelity.named(fidelity), case["young"], case["poisson"],
+                                mounting=case["mounting"])
         lm = loaded_model(pair, bodies)
         t["compliance"] = time.perf_counter() - t0
         phi = cycle_positions(positions, pair.blank.pinion.z)
