@@ -33,7 +33,7 @@ class BevelComplianceSpec:
     teeth : teeth meshed (the loaded ones plus a neighbour each side);  grid : (n_t, n_L) compliance grid nodes;
     depth : read depth d of the regular part (also 2d), mm, capped at 15 % of the local tooth thickness; 0: no
     near field;  rim_depth : blank under the root cone, mm (without a support);  support : the mounting in
-    service, ``("seat", rho)`` or ``("face", Z)`` (:class:`fem.solids.bevel_body.BevelBodySpec`);  divisions : mesh divisions of
+    service, ``("seat", rho)`` or ``("face", Z)``;  divisions : mesh divisions; both of
     :class:`fem.solids.bevel_body.BevelBodySpec`;  root_points : (along the fillet, along the face).
     """
     side: str
