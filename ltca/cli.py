@@ -98,7 +98,8 @@ def _cmd_validate(a: argparse.Namespace) -> int:
             return run_bevel_validation(a.case, tuple(a.positions or (0.0, 0.4)), a.out,
                                         refine=2 if a.refine is None else a.refine, level=a.level,
                                         h0=1e-3 * (a.band or 250.0), freeze=a.freeze,
-                                        command=command_line(sys.argv[1:]), progress=not a.quiet)
+                                        command=command_line(sys.argv[1:]), progress=not a.quiet,
+                                        torque=a.torque)
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
             return 2
@@ -184,6 +185,17 @@ def _positive_int(text: str) -> int:
         raise argparse.ArgumentTypeError(f"'{text}' is not an integer") from None
     if v < 1:
         raise argparse.ArgumentTypeError(f"{v}: must be >= 1")
+    return v
+
+
+def _positive_torque(text: str) -> float:
+    """A torque on the command line, N m: a number in (0, 1e5]."""
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+    if not 0 < v <= 1e5:
+        raise argparse.ArgumentTypeError(f"{v}: must be in (0, 100000] N m")
     return v
 
 
@@ -321,6 +333,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "half-width, other than the band ladder's first position), all or none")
     v.add_argument("--fidelity", choices=["coarse", "default", "fine"], default="default",
                    help="our fidelity for --reference calculix-whole")
+    v.add_argument("--torque", type=_positive_torque, metavar="NM",
+                   help="pinion torque of --reference calculix on a [bevel] case, N m (default: the case's middle "
+                        "torque)")
     v.add_argument("--freeze", metavar="JSON",
                    help="calculix-whole, and calculix on a [bevel] case: write the CalculiX results as a frozen "
                         "reference with provenance")

@@ -1,11 +1,12 @@
 """Our bevel LTCA against the frozen CalculiX reference of the spiral bevel pair (issue 13), without ccx at test time.
 
-``tests/reference/spiral_bevel_calculix.json`` was computed by ``ltca validate --reference calculix --case
-cases/spiral_bevel_cao2008.toml --freeze FILE`` (the command, CalculiX version, date, mesh sizes, deck hashes and
-the contact-zone refinement are stored in it): whole members built apart from our body (gmsh OCC solids, every
-tooth), pinion bore on a rigid body under the torque, gear back face fixed, penalty contact.  Bounds (issue 13):
-loaded TE (loaded minus unloaded, arcsec of the gear) 3 %, torque share per pair 0.03, interior peak flank
-pressure 5 %.
+``tests/reference/spiral_bevel_calculix*.json`` were computed by ``ltca validate --reference calculix
+--case cases/spiral_bevel_cao2008.toml [--torque NM] --freeze FILE`` at the middle torque, 175 N m, and at the
+light one, 35 N m, where a position with a single loaded pair exists (the command, CalculiX version, date, mesh
+sizes, deck hashes and the contact-zone refinement are stored in each): whole members built apart from our body
+(gmsh OCC solids, every tooth), pinion bore on a rigid body under the torque, gear back face fixed, penalty
+contact, both members held at the case's [mounting].  Bounds (issue 13): loaded TE (loaded minus unloaded,
+arcsec of the gear) 3 %, torque share per pair 0.03, interior peak flank pressure 5 %.
 """
 from __future__ import annotations
 
@@ -16,31 +17,28 @@ import pytest
 
 from conftest import ROOT
 
-REFERENCE = Path(__file__).resolve().parent / "reference" / "spiral_bevel_calculix.json"
+REFERENCES = sorted((Path(__file__).resolve().parent / "reference").glob("spiral_bevel_calculix*.json"))
 BOUNDS = {"te_rel": 0.03, "share_abs": 0.03, "pressure_rel": 0.05}
 _LM: dict = {}
 
 
-def _rec() -> dict:
-    return json.loads(REFERENCE.read_text())
+def _rec(name: str) -> dict:
+    return json.loads(next(p for p in REFERENCES if p.stem == name).read_text())
 
 
-def _ours(fraction: float) -> dict:
+def _ours(name: str, fraction: float) -> dict:
     from ltca.verify.bevel_calculix import bevel_model, ours_at
-    if "lm" not in _LM:
-        case, lm, _ = bevel_model(str(ROOT / _rec()["case"]))
-        _LM["lm"] = lm
-    lm = _LM["lm"]
+    rec = _rec(name)
+    if rec["case"] not in _LM:
+        _LM[rec["case"]] = bevel_model(str(ROOT / rec["case"]))[1]
+    lm = _LM[rec["case"]]
     import numpy as np
-    return ours_at(lm, fraction * 2 * np.pi / lm.pair.blank.pinion.z, _rec()["torque_nm"])
+    return ours_at(lm, fraction * 2 * np.pi / lm.pair.blank.pinion.z, rec["torque_nm"])
 
 
-def _rows():
-    return _rec()["rows"] if REFERENCE.exists() else []
-
-
-def test_reference_records_its_provenance():
-    rec = _rec()
+@pytest.mark.parametrize("name", [p.stem for p in REFERENCES])
+def test_reference_records_its_provenance(name):
+    rec = _rec(name)
     assert "Version" in rec["calculix_version"] and rec["date"]
     assert rec["command"].startswith("ltca validate --reference calculix")
     assert rec["bounds"] == BOUNDS
@@ -53,12 +51,12 @@ def test_reference_records_its_provenance():
         assert abs(c["torque_balance"] - 1) < 0.1, "CalculiX pair torques do not add up to the pinion torque"
 
 
-def _known_out() -> dict:
+def _known_out(name: str) -> dict:
     """(position index, quantity) -> the measured disagreement, for the checks the frozen reference records as
     outside the issue's bounds (``rows[i]["ok"]`` false): they stay strict xfails naming the numbers, not
     loosened bounds, until the LTCA (or the reference) changes."""
     out = {}
-    for i, r in enumerate(_rows()):
+    for i, r in enumerate(_rec(name)["rows"]):
         if abs(r["te_err_pct"]) > 100 * BOUNDS["te_rel"]:
             out[(i, "te")] = f"TE ours {r['ours']['theta']:.2f} vs CalculiX {r['ccx']['theta']:.2f} arcsec"
         if r["share_err"] > BOUNDS["share_abs"]:
@@ -69,17 +67,22 @@ def _known_out() -> dict:
 
 
 def _cases():
-    known = _known_out()
-    return [pytest.param(i, q, marks=[pytest.mark.xfail(strict=True, reason=known[(i, q)])] if (i, q) in known else [],
-                         id=f"{r['fraction']:+.2f}-{q}")
-            for i, r in enumerate(_rows()) for q in ("te", "share", "pressure")]
+    out = []
+    for p in REFERENCES:
+        known = _known_out(p.stem)
+        for i, r in enumerate(_rec(p.stem)["rows"]):
+            for q in ("te", "share", "pressure"):
+                marks = [pytest.mark.xfail(strict=True, reason=known[(i, q)])] if (i, q) in known else []
+                tag = p.stem[len("spiral_bevel_calculix_"):] or "middle"
+                out.append(pytest.param(p.stem, i, q, marks=marks, id=f"{tag}{r['fraction']:+.2f}-{q}"))
+    return out
 
 
-@pytest.mark.parametrize("index,quantity", _cases())
-def test_ours_against_frozen_calculix(index, quantity):
+@pytest.mark.parametrize("name,index,quantity", _cases())
+def test_ours_against_frozen_calculix(name, index, quantity):
     """Loaded TE within 3 %, pair torque shares within 0.03, interior peak pressure within 5 % of CalculiX."""
-    ref = _rows()[index]
-    o = _ours(ref["fraction"])
+    ref = _rec(name)["rows"][index]
+    o = _ours(name, ref["fraction"])
     c = ref["ccx"]
     if quantity == "te":
         assert o["theta"] == pytest.approx(c["theta"], rel=BOUNDS["te_rel"])
@@ -99,14 +102,14 @@ def test_regenerated_reference_matches_stored(tmp_path):
         pytest.skip("CalculiX (ccx) missing")
     import numpy as np
     from ltca.verify.bevel_ccx import BevelCcxSettings, solve_bevel_ccx
-    from ltca.verify.bevel_calculix import bevel_model
-    rec = _rec()
-    _, lm, _ = bevel_model(str(ROOT / rec["case"]))
+    from ltca.verify.bevel_calculix import bevel_model, mounted
+    rec = _rec("spiral_bevel_calculix")
+    case, lm, _ = bevel_model(str(ROOT / rec["case"]))
     first = rec["refinement"][0]
     f = rec["rows"][0]["fraction"]
     c = solve_bevel_ccx(lm, f * 2 * np.pi / lm.pair.blank.pinion.z, rec["torque_nm"] * 1e3,
-                        BevelCcxSettings(h_zone=1e-3 * first["h_zone_um"]), tmp_path / "ccx", cache=str(tmp_path),
-                        say=lambda m: None)
+                        mounted(BevelCcxSettings(h_zone=1e-3 * first["h_zone_um"]), case, lm), tmp_path / "ccx",
+                        cache=str(tmp_path), say=lambda m: None)
     assert c.theta_arcsec == pytest.approx(first["theta"], rel=0.005)
     for j, s in first["share"].items():
         assert abs(c.share.get(int(j), 0.0) - s) < 0.005

@@ -31,7 +31,7 @@ from ..bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
 from .bevel_ccx import BevelCcxSettings, bevel_ladder, interior, solve_bevel_ccx
 from .calculix import richardson
 
-__all__ = ["BOUNDS_BEVEL", "run_bevel_validation", "ours_at", "bevel_model"]
+__all__ = ["BOUNDS_BEVEL", "run_bevel_validation", "ours_at", "bevel_model", "mounted"]
 
 BOUNDS_BEVEL = {"te_rel": 0.03, "share_abs": 0.03, "pressure_rel": 0.05}
 
@@ -44,6 +44,13 @@ def bevel_model(case_path: str, fidelity: str = "default", cache=None, say=None)
     bodies = prepare_bodies(pair, "concave", BevelFidelity.named(fidelity), case["young"], case["poisson"], cache, say,
                             mounting=case["mounting"])
     return case, loaded_model(pair, bodies, Assembly(**case["assembly"])), time.perf_counter() - t0
+
+
+def mounted(st: BevelCcxSettings, case: dict, lm) -> BevelCcxSettings:
+    """CalculiX settings ``st`` with the case's mounting (pinion shaft seat, gear back face), which both models
+    read."""
+    sup = case["mounting"].supports(lm.pair.blank)
+    return replace(st, r_bore1=sup["pinion"][1], back_face_z=sup["gear"][1])
 
 
 def middle_torque(case: dict) -> float:
@@ -79,8 +86,9 @@ def _ok(e: dict) -> bool:
 
 def run_bevel_validation(case_path: str, fractions=(0.0, 0.4), out: str = "out/validate_bevel_ccx", refine: int = 2,
                          level: int = 1, h0: float = 0.25, freeze: str | None = None, command: str = "",
-                         progress: bool = True) -> int:
-    """Ours against CalculiX at pinion angles ``fractions`` x 2 pi / z1; exit status 0 when inside the bounds."""
+                         progress: bool = True, torque: float | None = None) -> int:
+    """Ours against CalculiX at pinion angles ``fractions`` x 2 pi / z1 under the pinion ``torque`` (N m; default
+    the case's middle torque); exit status 0 when inside the bounds."""
     from fem.calculix.run import ccx_path
     from .whole_check import ccx_version
     ccx_path()
@@ -88,11 +96,9 @@ def run_bevel_validation(case_path: str, fractions=(0.0, 0.4), out: str = "out/v
     outdir = Path(out)
     outdir.mkdir(parents=True, exist_ok=True)
     case, lm, t_comp = bevel_model(case_path, cache=str(outdir / "cache"), say=say)
-    torque = middle_torque(case)
+    torque = middle_torque(case) if torque is None else float(torque)
     cycle = 2 * np.pi / lm.pair.blank.pinion.z
-    sup = case["mounting"].supports(lm.pair.blank)          # the case's mounting, read by both models
-    ladder_st = [replace(st, r_bore1=sup["pinion"][1], back_face_z=sup["gear"][1])
-                 for st in bevel_ladder(max(refine, level) + 1, h0)]
+    ladder_st = [mounted(st, case, lm) for st in bevel_ladder(max(refine, level) + 1, h0)]
 
     def ccx(f, st):
         return solve_bevel_ccx(lm, f * cycle, torque * 1e3, st, outdir / f"ccx_{f:+.3f}_h{1e3 * st.h_zone:.0f}",
@@ -121,13 +127,14 @@ def run_bevel_validation(case_path: str, fractions=(0.0, 0.4), out: str = "out/v
              f"{'phi1/cycle':>10} {'TE ours':>8} {'TE ccx':>8} {'dTE%':>6} {'share ours':>13} {'share ccx':>13} "
              f"{'dsh':>5} {'p ours':>6} {'p ccx':>6} {'dp%':>6} {'t ours':>6} {'t ccx':>6}"]
     for r in rows:
-        lines.append(f"{r['fraction']:10.3f} {r['ours']['theta']:8.2f} {r['ccx']['theta']:8.2f} {r['te_err_pct']:+6.2f} "
+        lines.append(f"{r['fraction']:10.3f} {r['ours']['theta']:8.2f} {r['ccx']['theta']:8.2f} "
+                     f"{r['te_err_pct']:+6.2f} "
                      f"{sh(r['ours']['share']):>13} {sh(r['ccx']['share']):>13} {r['share_err']:5.3f} "
                      f"{r['ours']['p_interior']:6.0f} {r['ccx']['p_interior']:6.0f} {r['p_err_pct']:+6.2f} "
                      f"{r['ours']['wall']:6.2f} {r['ccx']['wall']:6.0f}{'' if r['ok'] else '  OUT'}")
-    lines.append(f"TE: loaded minus unloaded, arcsec of the gear; p: interior peak flank pressure, MPa; ours: compliance "
-                 f"{t_comp:.1f} s once + t ours per position; CalculiX: mesh + solve per position (s)")
-    lines.append(f"wall-time ratio CalculiX / ours per position: "
+    lines.append("TE: loaded minus unloaded, arcsec of the gear; p: interior peak flank pressure, MPa; ours: "
+                 f"compliance {t_comp:.1f} s once + t ours per position; CalculiX: mesh + solve per position (s)")
+    lines.append("wall-time ratio CalculiX / ours per position: "
                  + ", ".join(f"{r['ccx']['wall'] / (r['ours']['wall'] + t_comp / len(rows)):.0f}" for r in rows)
                  + " (ours with its compliance shared over the positions)")
     lines.append(f"CalculiX contact-zone refinement at phi1/cycle = {fractions[0]:g} (h -> TE, shares, p interior, "
