@@ -58,6 +58,18 @@ def _rotz(vec: np.ndarray, ang: np.ndarray) -> np.ndarray:
     return np.stack([c * x - s * y, s * x + c * y, vec[..., 2]], axis=-1)
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b of a (3,) vector and (..., 3) vectors: np.cross's arithmetic (the same products and differences,
+    so the same bits) without its axis handling, which cost a third of a bevel LTCA cycle."""
+    x, y, z = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a[1] * z - a[2] * y, a[2] * x - a[0] * z, a[0] * y - a[1] * x], axis=-1)
+
+
+def _ez_cross(b: np.ndarray) -> np.ndarray:
+    """e_z x b of (..., 3) vectors, as :func:`_cross` (e_z = (0, 0, 1))."""
+    return _cross(np.array([0.0, 0.0, 1.0]), b)
+
+
 def surface_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarray,
                   with_work: bool = True) -> SurfaceState:
     """Evaluate the generating blade, the equation of meshing and the work point (vectorised)."""
@@ -68,7 +80,7 @@ def surface_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarra
     k, O = ms.work_axis, ms.work_origin
     d = r_m - O
     phi, dphi = roll(ms, np.asarray(psi, dtype=float))
-    v = np.cross([0.0, 0.0, 1.0], r_m) - dphi[..., None] * np.cross(k, d)
+    v = _ez_cross(r_m) - dphi[..., None] * _cross(k, d)
     f = np.einsum("...i,...i", n_m, v)
     Z = d @ k
     rho = np.sqrt(np.maximum(np.einsum("...i,...i", d, d) - Z ** 2, 0.0))
