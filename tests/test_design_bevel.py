@@ -103,6 +103,18 @@ def test_tiny_bevel_search_writes_results_and_resumes(tmp_path):
     assert "design" not in opt_case
     box = s["tolerance_box"]["optimum"]["corners"]
     assert len(box) == 9 and all(r["edge_margin_mm"] >= 0 for r in box)
+    # the seed-vs-optimum table: seed 000's targets, the candidates' TE, the worst corner of the box
+    rows = {r["quantity"]: (r["baseline"], r["optimum"]) for r in s["seed_vs_optimum"]["rows"]}
+    assert rows["working path angle eta2 (deg)"][0] == pytest.approx(22.0)
+    assert rows["working TE magnitude m21 (arcsec)"] == pytest.approx(
+        (8.25, opt["values"]["working_te_magnitude_arcsec"]))
+    assert rows["coast path angle eta2 (deg)"] == pytest.approx((-14.0, -14.0))
+    assert rows["coast TE magnitude m21 (arcsec)"] == pytest.approx((11.25, 11.25))
+    assert rows["loaded TE peak-to-peak at 175 N m (arcsec)"] == pytest.approx(
+        (base["te_ptp_arcsec"]["175"], opt["te_ptp_arcsec"]["175"]))
+    assert rows["smallest toe/heel margin over the box (mm) at 175 N m"][1] == min(r["edge_margin_mm"] for r in box)
+    assert s["seed_vs_optimum"]["tolerance_box_mm"] == [0.0, 0.05, 0.0]
+    assert (out / "seed_vs_optimum.csv").read_text().startswith("quantity,baseline,optimum")
     # a killed run resumes from its history
     lines = (out / "history.jsonl").read_text().splitlines()
     n_cand = sum(json.loads(x)["role"] != "harris" for x in lines)
@@ -130,6 +142,39 @@ def test_a_design_the_geometry_cannot_make_is_infeasible():
     ev = score(spec, {}, m)
     assert not ev.feasible and math.isfinite(ev.penalised(10.0)) and ev.penalised(10.0) > 10.0
 
+
+
+def test_seed_vs_optimum_table_by_value():
+    """The seed-vs-optimum table (ltca.design.compare) from hand-made figures: the flank targets, TE per torque,
+    and the worst toe / heel and top margins, edge share and pressure over the box corners."""
+    from ltca.design.compare import seed_table, table_csv
+    def corner(m, top, share, p, te):
+        return {"E_mm": 0.0, "P_mm": 0.0, "G_mm": 0.0, "te_ptp_arcsec": te, "edge_margin_mm": m, "top_margin_mm": top,
+                "edge_share": share, "edges": [], "max_interior_pressure_mpa": p}
+    box = {"baseline": {"torque_nm": 350.0, "corners": [corner(1.6, 0.0, 0.12, 2150.0, 13.0),
+                                                        corner(0.3, 0.1, 0.18, 2200.0, 14.0)]},
+           "optimum": {"torque_nm": 350.0, "corners": [corner(2.5, 0.2, 0.08, 2300.0, 9.0),
+                                                       corner(1.9, 0.0, 0.10, 2250.0, 11.0)]}}
+    settings = {"baseline": {"bevel.working.path_angle_deg": 22.0, "bevel.working.te_magnitude_arcsec": 8.25,
+                             "bevel.coast.path_angle_deg": -14.0, "bevel.coast.te_magnitude_arcsec": 11.25},
+                "optimum": {"bevel.working.path_angle_deg": 10.0, "bevel.working.te_magnitude_arcsec": 20.0,
+                            "bevel.coast.path_angle_deg": -14.0, "bevel.coast.te_magnitude_arcsec": 11.25}}
+    t = seed_table([35.0, 175.0, 350.0], settings, {"baseline": [4.3, 8.8, 7.9], "optimum": [8.2, 13.8, 13.5]}, box,
+                   {"baseline": False, "optimum": True}, (0.05, 0.05, 0.05))
+    rows = {r["quantity"]: (r["baseline"], r["optimum"]) for r in t["rows"]}
+    assert rows["working path angle eta2 (deg)"] == (22.0, 10.0)
+    assert rows["working TE magnitude m21 (arcsec)"] == (8.25, 20.0)
+    assert rows["coast TE magnitude m21 (arcsec)"] == (11.25, 11.25)
+    assert rows["loaded TE peak-to-peak at 175 N m (arcsec)"] == (8.8, 13.8)
+    assert rows["smallest toe/heel margin over the box (mm) at 350 N m"] == (0.3, 1.9)
+    assert rows["smallest top margin over the box (mm) at 350 N m"] == (0.0, 0.0)
+    assert rows["largest edge load share over the box (-) at 350 N m"] == (0.18, 0.10)
+    assert rows["largest interior peak pressure over the box (MPa) at 350 N m"] == (2200.0, 2300.0)
+    assert rows["feasible"] == (False, True)
+    assert t["tolerance_box_mm"] == [0.05, 0.05, 0.05] and len(t["corners"]["optimum"]) == 2
+    csv = table_csv(t).splitlines()
+    assert csv[0] == "quantity,baseline,optimum" and '"feasible",False,True' in csv
+    assert '"working TE magnitude m21 (arcsec)",8.25,20' in csv
 
 @pytest.mark.slow
 @pytest.mark.xfail(strict=False, reason="measured run: grid optimum at the box corner (0 deg, 1 arcsec, 1.92 "
