@@ -204,7 +204,7 @@ def test_search_finds_the_grid_optimum_of_eta2_m21(tmp_path):
     assert f_opt < s["baseline"]["objective_arcsec"]
 
 
-@pytest.mark.slow      # 14 m21 x 3 torques, 8 positions: about 4 min idle on one core
+@pytest.mark.slow      # 14 m21 x 3 torques, 8 positions: 4 min on a busy 2-core machine (load 6-7)
 def test_optimal_m21_grows_with_the_torque():
     """The issue's physics: the optimal bevel m21 grows with the design torque. The working flank at seed 000's
     path angle (22 deg), each torque the only one, m21 1-55 arcsec (60 cannot be cut: no admissible blade through
