@@ -177,7 +177,7 @@ def test_seed_vs_optimum_table_by_value():
     assert '"working TE magnitude m21 (arcsec)",8.25,20' in csv
 
 
-@pytest.mark.slow      # 81 + 20 candidates at one torque: 17 min with one worker on a busy machine (load 4-7)
+@pytest.mark.slow      # 81 + 20 candidates at one torque: 9.5 min with 2 workers on a busy machine (load 6-9)
 def test_search_finds_the_grid_optimum_of_eta2_m21(tmp_path):
     """The shipped pair at its middle torque 175 N m, the pressure limit alone (no edge margin): the 9 x 9
     objective map over (eta2 0-32 deg, m21 1-13 arcsec) is the brute-force reference; the case's search
