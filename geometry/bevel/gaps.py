@@ -95,6 +95,7 @@ class MeshGaps:
         g, _, _, self._s2, _ = _gap(G, P.to_mesh(rp, 0.0), np.array([self.phi2_0]))
         self.t_range = (0.0, 1.0)
         self.L_range = (P.Ai, P.A0)
+        self._surface_memo = None
 
     def axial(self, t: np.ndarray, L: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Pinion axial section (Z, rho) of its flank coordinates (t, L), mm."""
@@ -105,16 +106,33 @@ class MeshGaps:
         root, face = self.P._cones(L)
         return (Rn - root) / (face - root)
 
-    def gaps(self, phi1: np.ndarray, t: np.ndarray, L: np.ndarray, extend: bool = False) -> PointGaps:
+    def pinion_surface(self, t: np.ndarray, L: np.ndarray):
+        """The pinion's points, normals and convergence flags at flank coordinates (t, L) (body frame, tooth 0),
+        remembered for the last grid asked: the LTCA's first-contact scan asks the same grid at every position and
+        pair, and each point's Newton solve does not depend on the others in its batch (the same bits)."""
+        t, L = np.broadcast_arrays(np.asarray(t, float), np.asarray(L, float))
+        key = (t.shape, t.tobytes(), L.tobytes())
+        if self._surface_memo is None or self._surface_memo[0] != key:
+            r1, n1, ok1 = self.P.surface(t.ravel(), L.ravel())
+            self._surface_memo = (key, (r1.reshape(t.shape + (3,)), n1.reshape(t.shape + (3,)), ok1.reshape(t.shape)))
+        return self._surface_memo[1]
+
+    def gaps(self, phi1: np.ndarray, t: np.ndarray, L: np.ndarray, extend: bool = False,
+             surface: tuple | None = None) -> PointGaps:
         """Gaps of pinion points (t, L) of tooth 0 at pinion angles phi1 (rad; all broadcast together).
 
         With ``extend`` the gear surface is continued past its blank (finite-difference stencils at an edge); ``ok``
-        still says whether the point is over the gear flank."""
+        still says whether the point is over the gear flank. ``surface``: the pinion's (points, normals, ok) at
+        (t, L) from :meth:`pinion_surface`, broadcast with them (not solved again)."""
         phi1, t, L = np.broadcast_arrays(np.asarray(phi1, float), np.asarray(t, float), np.asarray(L, float))
         shp = t.shape
         phi1, t, L = phi1.ravel(), t.ravel(), L.ravel()
         P, G = self.P, self.G
-        r1, n1, ok1 = P.surface(t, L)
+        if surface is None:
+            r1, n1, ok1 = P.surface(t, L)
+        else:
+            r1, n1 = (np.broadcast_to(a, shp + (3,)).reshape(-1, 3) for a in surface[:2])
+            ok1 = np.broadcast_to(surface[2], shp).ravel()
         ang2 = self.phi2_0 - self.ratio * phi1
         r_h = P.to_mesh(r1, phi1)
         g, v2, q, _, ok2 = _gap(G, r_h, ang2, self._s2, mask=not extend)

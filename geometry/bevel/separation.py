@@ -44,6 +44,22 @@ def _rotz(v, a):
     return np.stack([c * x - s * y, s * x + c * y, z], -1)
 
 
+#: flanks generated lately, by the identity of their cut and blank (kept alive here, so an id is not reused)
+_FLANKS: dict = {}
+
+
+def _generated(fc: FlankCut, blank: BevelBlank, member: str, nu: int, nv: int, root_offset: float):
+    """:func:`generate_flank`, remembered for the last 16 cuts: a flank does not depend on the assembly, and the
+    LTCA builds the same flanks for every torque, mounting and (the gear) every design of a search."""
+    key = (id(fc), id(blank), member, nu, nv, float(root_offset))
+    hit = _FLANKS.get(key)
+    if hit is None:
+        if len(_FLANKS) >= 16:
+            _FLANKS.pop(next(iter(_FLANKS)))
+        hit = _FLANKS[key] = (fc, blank, generate_flank(fc, blank, member, nu, nv, root_offset))
+    return hit[2]
+
+
 class _Member:
     """One flank of one member in the mesh: grid, blank region, frames, exact surface at (t, L)."""
 
@@ -52,7 +68,7 @@ class _Member:
         self.fc, self.B, self.O, self.name = fc, B, O, member
         self.mb = mb = blank.member(member)
         self.A0, self.Ai, self.off = blank.outer_cone_distance, blank.inner_cone_distance, root_offset
-        self.flank = generate_flank(fc, blank, member, nu, nv, root_offset)
+        self.flank = _generated(fc, blank, member, nu, nv, root_offset)
         self.t, self.L = self.flank.u, self.flank.v
         self._guess = RegularGridInterpolator((self.t, self.L), self.flank.meta["params"], bounds_error=False,
                                               fill_value=None)

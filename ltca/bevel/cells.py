@@ -88,7 +88,9 @@ def pair_minima(lm: BevelLoadedModel, phi1: float, js, scan: tuple[int, int] = (
     L0, L1 = G.L_range
     lo, hi = np.array([t0, L0]), np.array([t1, L1])
     T, L = np.meshgrid(np.linspace(t0, t1, scan[0]), np.linspace(L0, L1, scan[1]), indexing="ij")
-    g = _evaluate(lm, phi[:, None, None], T[None], L[None]).g.reshape(k, -1)
+    # the scan grid's pinion points are the same at every position and pair: solved once per gap evaluator
+    surf = tuple(a[None] for a in G.pinion_surface(T, L))
+    g = G.gaps(phi[:, None, None], T[None], L[None], surface=surf).g.reshape(k, -1)
     live = np.isfinite(g).any(1)
     i = np.argmin(np.where(np.isfinite(g), g, np.inf), 1)
     x = np.stack([T.ravel()[i], L.ravel()[i]], 1)                    # (k, 2)

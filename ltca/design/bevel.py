@@ -197,6 +197,10 @@ class BevelBackend:
         lm = loaded_model(pair, self.bodies[side], asm or self.asm)
         return lm, [solve_position(lm, float(p), abs(torque_nm) * 1e3) for p in self.phi]
 
+    def cycle(self, values: dict[str, float], torque_nm: float, asm: Assembly | None = None):
+        """A design's loaded cycle at one torque (N m) and mounting (default: the case's): (model, positions)."""
+        return self._cycle(self.pair(values), torque_nm, asm)
+
     def corners(self) -> list[Assembly]:
         """The nominal mounting and the corners of the tolerance box (the nominal alone for a zero box)."""
         box = self.spec.constraints.tolerance_box
@@ -244,14 +248,16 @@ class BevelBackend:
 
     def box_report(self, values: dict[str, float]) -> dict:
         """A design at the top torque at the nominal mounting and each corner of the tolerance box: loaded TE
-        peak-to-peak, edge margin, edge load share and the edges loaded (the seed-vs-optimum table)."""
+        peak-to-peak, toe / heel margin (``edge_margin_mm``), top margin, edge load share, the edges loaded and
+        the peak interior pressure (:mod:`ltca.design.bevel_checks`; the seed-vs-optimum table)."""
         pair = self.pair(values)
         top = max(self.torques_nm, key=abs)
         rows = []
         for asm in self.corners():
             m = cycle_measures(*self._cycle(pair, top, asm))
             rows.append({"E_mm": asm.E, "P_mm": asm.P, "G_mm": asm.G, "te_ptp_arcsec": m["te_ptp"],
-                         "edge_margin_mm": m["margin"], "edge_share": m["edge_share"], "edges": m["edges"],
+                         "edge_margin_mm": m["margin"], "top_margin_mm": m["top_margin"],
+                         "edge_share": m["edge_share"], "edges": m["edges"],
                          "max_interior_pressure_mpa": m["pressure"]})
         return {"torque_nm": top, "corners": rows}
 

@@ -1,12 +1,21 @@
 """Checks of one bevel candidate for ``ltca optimise``: the machine settings inside a generator's ranges, the
-bearing pattern's distance to the flank boundary (edge margin) and its edge load, the peak interior pressure.
+bearing pattern's distance to the flank boundary (edge margins) and its edge load, the peak interior pressure.
 
-Edge margin (mm): the smallest distance of a loaded contact cell (force > 0) to the toe (L = A_i) or the heel
-(L = A_0), the cone distance L taken in the gear's and in the pinion's axial section; a cell at an end has a margin
-of about half its size. The top and root edges are not in the margin: under load the incoming pair of every design
-first touches at the pinion top / gear root (the mesh entry through the edge, seen by the LTCA as edge cells), so a
-margin there would exclude every design; their load is measured as the edge load share (cells at any edge, share
-of the position's normal load) and bounded by ``max_edge_share``.
+Edge margins (mm), measured on the loaded contact cells (force > 0, cell centres: a cell at a boundary has a
+margin of about half its size) over every position of the cycle, on both
+members, in their axial sections (the plane of the bearing-pattern plot); a cell at the toe measured 0.16-0.28 mm
+at the coarse fidelity:
+
+``margin`` (toe / heel)
+    the smallest distance along the cone distance L to the toe (L = A_i) or the heel (L = A_0):
+    min(L - A_i, A_0 - L) over the gear's and the pinion's cells. This is ``edge_margin_mm`` of the constraints.
+``top_margin`` (top / root)
+    the smallest height of a cell below its member's face cone (the tooth top), over the pinion and the gear. The
+    root of one member is the top of the other (the working depth), so both tops bound the pattern in depth. Not
+    a constraint: for a 12/36 pair the gear's addendum is short (the mean point lies 1.3 mm below the gear top)
+    and the transfer-point contact of a path inclined towards the tooth top reaches the gear top at every m21
+    (measured at eta2 = 22 deg, m21 1-45 arcsec, 35 N m: 0.00-0.04 mm); load at the tops is bounded by
+    ``max_edge_share`` instead (cells at any edge, share of the position's normal load).
 
 Machine ranges (:data:`MACHINE_RANGES`) are those of a generic cradle-type generator relative to the blank's mean
 cone distance A_m (our assumption, not a named machine): radial setting 0.2-2 A_m, |blank offset| and
@@ -20,7 +29,7 @@ import numpy as np
 
 from geometry.bevel.machine import FlankCut
 
-__all__ = ["MACHINE_RANGES", "machine_violations", "edge_margin", "cycle_measures"]
+__all__ = ["MACHINE_RANGES", "machine_violations", "edge_margin", "top_margin", "cycle_measures"]
 
 #: setting -> (lower, upper, relative to A_m?)
 MACHINE_RANGES = {"radial_setting": (0.2, 2.0, True), "blank_offset": (-0.5, 0.5, True),
@@ -41,7 +50,7 @@ def machine_violations(fc: FlankCut, mean_cone_distance: float) -> list[str]:
 
 
 def edge_margin(lm, res) -> float:
-    """The edge margin (module docstring) of the loaded cells of positions ``res`` on model ``lm``, mm."""
+    """The toe / heel margin (module docstring) of the loaded cells of positions ``res`` on model ``lm``, mm."""
     d = math.inf
     for r in res:
         m = r.force > 0
@@ -51,10 +60,24 @@ def edge_margin(lm, res) -> float:
     return d
 
 
+def top_margin(lm, res) -> float:
+    """The top margin (module docstring): smallest height of a loaded cell below its member's face cone, mm."""
+    bl = lm.pair.blank
+    A0 = bl.outer_cone_distance
+    d = math.inf
+    for r in res:
+        m = r.force > 0
+        if m.any():
+            for mb, L, Rn in ((bl.pinion, r.L1[m], r.Rn1[m]), (bl.gear, r.L2[m], r.Rn2[m])):
+                face = mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
+                d = min(d, float((face - Rn).min()))
+    return d
+
+
 def cycle_measures(lm, res) -> dict:
     """Figures of one loaded cycle: TE peak-to-peak (arcsec), peak interior pressure (MPa, beyond the edge band of
-    :func:`ltca.bevel.results.edge_band`),
-    largest edge load share of a position, edge margin (mm), the edges loaded."""
+    :func:`ltca.bevel.results.edge_band`), largest edge load share of a position, toe / heel and top margins
+    (mm, module docstring), the edges loaded."""
     from geometry.bevel.tca import RAD_PER_ARCSEC
     te = np.array([r.te for r in res]) / RAD_PER_ARCSEC
     from ltca.bevel.results import edge_band
@@ -63,4 +86,4 @@ def cycle_measures(lm, res) -> dict:
     share = max(float(r.force[r.edge != ""].sum() / max(r.force.sum(), 1e-300)) for r in res)
     edges = sorted({e for r in res for e in r.edge_load()})
     return dict(te_ptp=float(np.ptp(te)), pressure=inner, edge_share=share, margin=edge_margin(lm, res),
-                edges=edges)
+                top_margin=top_margin(lm, res), edges=edges)
