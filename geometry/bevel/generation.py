@@ -219,6 +219,13 @@ def generate_flank(fc: FlankCut, blank: BevelBlank, member: str, nu: int = 20, n
             g = X[prev, jm] if abs(prev - im) < 1 or not ok[prev, jm] else \
                 2 * X[prev, jm] - X[2 * prev - i if 0 <= 2 * prev - i < nu else prev, jm]
             x, okk = solve_axial_points(fc, Z[i:i + 1, jm], rho[i:i + 1, jm], g[None])
+            if not okk[0] and ok[prev, jm]:                    # a coarse row step: continue in 8 sub-steps
+                x = X[prev, jm][None]
+                for w in np.linspace(0.125, 1.0, 8):
+                    x, okk = solve_axial_points(fc, Z[prev:prev + 1, jm] + w * (Z[i, jm] - Z[prev, jm]),
+                                                rho[prev:prev + 1, jm] + w * (rho[i, jm] - rho[prev, jm]), x)
+                    if not okk[0]:
+                        break
             X[i, jm], ok[i, jm] = x[0], okk[0]
             prev = i
     for rng, step in ((range(jm + 1, nv), 1), (range(jm - 1, -1, -1), -1)):   # columns
