@@ -52,7 +52,9 @@ class CcxDeck:
     ``fixed`` is (body, facet group) held in all directions; ``driven`` is (body, facet group) tied to a
     rigid reference node on the world z axis through ``axis_origin`` that may only rotate about z, loaded
     by ``moment`` (N mm, counter-clockwise positive). ``penalty`` is the slope of the linear
-    pressure-overclosure law, MPa/mm; ``tension`` its small tension at large clearances, MPa."""
+    pressure-overclosure law, MPa/mm; ``tension`` its small tension at large clearances, MPa.
+    ``stress_output`` also writes the nodal stresses (``*EL FILE`` ``S``: extrapolated from the integration
+    points and averaged over the elements at a node) to the ``.frd`` file."""
     young: float
     poisson: float
     fixed: tuple[str, str]
@@ -65,6 +67,7 @@ class CcxDeck:
     increments: tuple[float, float, float, float] = (1.0, 1.0, 1e-4, 1.0)
     solver: str = "SPOOLES"
     small_sliding: bool = True
+    stress_output: bool = False
 
 
 def _face_numbers(tets: np.ndarray, tri: np.ndarray, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
@@ -145,6 +148,6 @@ def write_deck(path: str | os.PathLike, bodies: list[DeckBody], deck: CcxDeck) -
             "*CLOAD", f"{rot}, 3, {deck.moment:.10g}",
             "*NODE PRINT, NSET=NROT", "U", "*NODE PRINT, NSET=NFIX, TOTALS=ONLY", "RF",
             *[f"*CONTACT PRINT, SLAVE=S{p.name}, MASTER=M{p.name}\nCF" for p in deck.pairs],
-            "*CONTACT FILE", "CSTR", "*END STEP"]
+            "*CONTACT FILE", "CSTR", *(["*EL FILE", "S"] if deck.stress_output else []), "*END STEP"]
     Path(path).write_text("\n".join(out) + "\n")
     return {"ref": ref, "rot": rot, "node_offset": node_off, "elem_offset": elem_off}

@@ -59,6 +59,10 @@ class FullGearSpec:
         Extra gmsh ``MathEval`` sizes in x, y, z (mm), combined by their minimum (contact bands).
     ds : float
         Spacing of the spline through-points of the outline, mm.
+    h_fillet : float or None
+        Element size on the loaded teeth's fillets, mm, for their root stress; None: ``h_flank``.
+    fillet_side : {"left", "right"} or None
+        The side of the fillets refined to ``h_fillet`` (the loaded flank's: the tension side); None: both.
     """
 
     outline: np.ndarray
@@ -74,6 +78,8 @@ class FullGearSpec:
     h_body: float = 5.0
     size_fields: tuple[str, ...] = ()
     ds: float = 0.4
+    h_fillet: float | None = None
+    fillet_side: str | None = None
 
     def __post_init__(self) -> None:
         r = np.hypot(*np.asarray(self.outline, float).T)
@@ -85,6 +91,8 @@ class FullGearSpec:
                 raise ValueError(f"web = {self.web}: need r_bore < r_hub < r_rim < r_root and a web inside the face")
         if not 0 < self.h_flank <= self.h_tooth <= self.h_body:
             raise ValueError("element sizes must satisfy 0 < h_flank <= h_tooth <= h_body")
+        if self.h_fillet is not None and not 0 < self.h_fillet <= self.h_body:
+            raise ValueError(f"h_fillet = {self.h_fillet} must be in (0, h_body]")
 
     @property
     def spec_hash(self) -> str:
@@ -94,6 +102,8 @@ class FullGearSpec:
             h.update(np.ascontiguousarray(a, dtype=float).tobytes())
         h.update(repr((self.z, self.r_bore, self.face_width, self.web, self.loaded_teeth, self.h_flank,
                        self.h_tooth, self.h_body, self.size_fields, self.ds)).encode())
+        if self.h_fillet is not None:
+            h.update(repr(("h_fillet", self.h_fillet, self.fillet_side)).encode())
         return h.hexdigest()[:20]
 
 
@@ -228,13 +238,17 @@ def _labels(spec: FullGearSpec, runs, vol) -> dict[int, str]:
 
 
 def _size_field(spec: FullGearSpec, labels: dict[int, str]) -> None:
-    """h_flank at the loaded teeth, h_tooth at the others, graded (slope 0.5) to h_body; min with the extras."""
+    """h_flank at the loaded teeth (h_fillet on their fillets), h_tooth at the others, graded (slope 0.5) to
+    h_body; min with the extras."""
     import gmsh
     fld = gmsh.model.mesh.field
     tags = []
     loaded = {str(k) for k in spec.loaded_teeth}
-    groups = ([t for t, s in labels.items() if s.count("_") and s.split("_")[1] in loaded], spec.h_flank), \
-             ([t for t, s in labels.items() if s != "bore" and s != "ends"], spec.h_tooth)
+    on_loaded = [t for t, s in labels.items() if s.count("_") and s.split("_")[1] in loaded]
+    groups = [(on_loaded, spec.h_flank), ([t for t, s in labels.items() if s != "bore" and s != "ends"], spec.h_tooth)]
+    if spec.h_fillet is not None:
+        groups.append(([t for t in on_loaded if labels[t].startswith("fillet_")
+                        and labels[t].endswith(spec.fillet_side or "")], spec.h_fillet))
     for surfaces, h in groups:
         if not surfaces:
             continue
