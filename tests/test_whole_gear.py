@@ -73,6 +73,27 @@ def test_full_gear_is_independent_of_our_body():
         assert not any("gear_body" in n or "compliance" in n for n in names), (path, names)
 
 
+def test_helical_full_gear_is_lofted_on_the_helicoid():
+    """Helical C14's pinion (beta 20 deg, b 40 mm): every tooth labelled, the flank vertices of tooth 0 within
+    1 um of the transverse outline turned by tan(beta) / r z (measured 0.3 um), over the whole face."""
+    from fem.solids.full_gear import FullGearSpec, build_full_gear
+    from fem.solids.section import rot2
+    from fem.solids.segment_gmsh import polyline_distance
+    from ltca.case import load_case
+    from ltca.cylindrical.model import build_model
+    from ltca.verify.whole_gear import twist
+    model = build_model(load_case(CASES / "helical_c14.toml"))
+    p, b = model.pinion, model.face_width
+    m = build_full_gear(FullGearSpec(p.xy, p.kind, p.side, p.z, model.r_bore1, b, loaded_teeth=(0,), h_flank=2.0,
+                                     h_tooth=3.0, h_body=6.0, ds=0.8, twist=twist(p)))
+    teeth = {int(n.split("_")[1]) for n in m.facets if n.startswith("flank_")}
+    assert teeth == set(range(-(p.z // 2), p.z - p.z // 2)) and {"bore", "ends", "root"} <= set(m.facets)
+    X = m.nodes[np.unique(m.facets["flank_0_right"][:, :3])]
+    d = [polyline_distance(rot2(x[None, :2], -twist(p) * x[2])[0], np.asarray(p.xy)) for x in X]
+    assert max(d) < 1e-3 and X[:, 2].min() == pytest.approx(-0.5 * b) and X[:, 2].max() == pytest.approx(0.5 * b)
+    assert twist(p) == pytest.approx(np.tan(np.radians(20.0)) / p.r_ref)
+
+
 def _frd_block(name: str, rows: dict) -> str:
     """A nodal result block of a CalculiX .frd file (I10 node ids, E12.5 values)."""
     lines = [f" -4  {name:<8}    6    1"] + [f" -5  C{i}          1    4    1    1" for i in range(6)]

@@ -4,7 +4,10 @@ The reference solid of the whole-gear CalculiX check: the transverse outline of 
 generated tooth outline rotated into place for each tooth) is one closed curve, the bore is a circular
 hole, and the face is extruded over the face width with gmsh's OpenCASCADE kernel. A webbed (thin-rim)
 gear is a toothed rim ring, a narrower web and a hub, each extruded over its own width and made
-conforming by ``occ.fragment``. Spur gears only.
+conforming by ``occ.fragment``. A helical gear (``twist`` = tan(beta) / r, rad/mm: the transverse section at
+z is the one at z = 0 turned by ``twist`` z, counter-clockwise) is lofted (``occ.addThruSections``, cubic
+B-spline surfaces) through the whole outline at sections at most ``max_turn`` apart in that turn, and its bore
+cut out; no web.
 
 Nothing here is shared with the compliance body of our solver: its own construction (OCC extrusion and
 fragments, not the built-in kernel's sweep), every tooth meshed (none left out), its own size field
@@ -63,6 +66,10 @@ class FullGearSpec:
         Element size on the loaded teeth's fillets, mm, for their root stress; None: ``h_flank``.
     fillet_side : {"left", "right"} or None
         The side of the fillets refined to ``h_fillet`` (the loaded flank's: the tension side); None: both.
+    twist : float
+        tan(beta) / r of a helical gear, rad/mm (the sign of beta: the hand); 0 for spur.
+    max_turn : float
+        Largest turn between the loft's sections, rad (a helical gear).
     """
 
     outline: np.ndarray
@@ -80,6 +87,8 @@ class FullGearSpec:
     ds: float = 0.4
     h_fillet: float | None = None
     fillet_side: str | None = None
+    twist: float = 0.0
+    max_turn: float = 0.02
 
     def __post_init__(self) -> None:
         r = np.hypot(*np.asarray(self.outline, float).T)
@@ -87,12 +96,15 @@ class FullGearSpec:
             raise ValueError(f"r_bore = {self.r_bore} must be in (0, {r.min():.4f}) (below the root)")
         if self.web is not None:
             r_rim, r_hub, width, off = self.web
-            if not (self.r_bore < r_hub < r_rim < r.min() and 0 < width and abs(off) + width / 2 <= self.face_width / 2):
+            if not (self.r_bore < r_hub < r_rim < r.min() and 0 < width
+                    and abs(off) + width / 2 <= self.face_width / 2):
                 raise ValueError(f"web = {self.web}: need r_bore < r_hub < r_rim < r_root and a web inside the face")
         if not 0 < self.h_flank <= self.h_tooth <= self.h_body:
             raise ValueError("element sizes must satisfy 0 < h_flank <= h_tooth <= h_body")
         if self.h_fillet is not None and not 0 < self.h_fillet <= self.h_body:
             raise ValueError(f"h_fillet = {self.h_fillet} must be in (0, h_body]")
+        if self.twist and (self.web is not None or not 0 < self.max_turn <= 0.2):
+            raise ValueError("a helical full gear has no web and needs 0 < max_turn <= 0.2 rad")
 
     @property
     def spec_hash(self) -> str:
@@ -104,6 +116,8 @@ class FullGearSpec:
                        self.h_tooth, self.h_body, self.size_fields, self.ds)).encode())
         if self.h_fillet is not None:
             h.update(repr(("h_fillet", self.h_fillet, self.fillet_side)).encode())
+        if self.twist:
+            h.update(repr(("twist", self.twist, self.max_turn)).encode())
         return h.hexdigest()[:20]
 
 
@@ -136,15 +150,15 @@ def tooth_label(k: int, z: int) -> int:
     return (k + z // 2) % z - z // 2
 
 
-def _outline_loop(spec: FullGearSpec, runs) -> int:
-    """The closed OCC curve loop of all z teeth at z = -b/2."""
+def _outline_loop(spec: FullGearSpec, runs, z0: float | None = None, wire: bool = False) -> int:
+    """The closed OCC curve loop (or wire) of all z teeth at z0 (default -b/2), turned by ``twist`` z0."""
     import gmsh
     occ = gmsh.model.occ
-    z0 = -0.5 * spec.face_width
+    z0 = -0.5 * spec.face_width if z0 is None else z0
     first = prev = None
     curves = []
     for i in range(spec.z):
-        phi = -2 * np.pi * i / spec.z
+        phi = -2 * np.pi * i / spec.z + spec.twist * z0
         for j, (_, pts) in enumerate(runs):
             q = rot2(_thin(pts, spec.ds), phi)
             start = prev if prev is not None else occ.addPoint(q[0, 0], q[0, 1], z0)
@@ -154,7 +168,21 @@ def _outline_loop(spec: FullGearSpec, runs) -> int:
             mid = [occ.addPoint(x, y, z0) for x, y in q[1:-1]]
             curves.append(occ.addSpline([start, *mid, end]) if mid else occ.addLine(start, end))
             prev = end
-    return occ.addCurveLoop(curves)
+    return occ.addWire(curves) if wire else occ.addCurveLoop(curves)
+
+
+def _helical(spec: FullGearSpec, runs) -> list[tuple[int, int]]:
+    """The helical gear's volume: the outline lofted through sections along the face, the bore cut out."""
+    import gmsh
+    occ = gmsh.model.occ
+    b = spec.face_width
+    n = max(3, int(np.ceil(abs(spec.twist) * b / spec.max_turn)) + 1)
+    wires = [_outline_loop(spec, runs, z0, wire=True) for z0 in np.linspace(-0.5 * b, 0.5 * b, n)]
+    loft = [e for e in occ.addThruSections(wires, makeSolid=True, makeRuled=False) if e[0] == 3]
+    bore = occ.addCylinder(0, 0, -0.5 * b - 1.0, 0, 0, b + 2.0, spec.r_bore)
+    out = [e for e in occ.cut(loft, [(3, bore)])[0] if e[0] == 3]
+    occ.synchronize()
+    return out
 
 
 def _solid(spec: FullGearSpec, runs) -> list[tuple[int, int]]:
@@ -166,8 +194,10 @@ def _solid(spec: FullGearSpec, runs) -> list[tuple[int, int]]:
     import gmsh
     occ = gmsh.model.occ
     b = spec.face_width
-    outer = _outline_loop(spec, runs)
     z0 = -0.5 * b
+    if spec.twist:
+        return _helical(spec, runs)
+    outer = _outline_loop(spec, runs)
     if spec.web is None:
         bore = occ.addCurveLoop([occ.addCircle(0, 0, z0, spec.r_bore)])
         out = [(d, t) for d, t in occ.extrude([(2, occ.addPlaneSurface([outer, bore]))], 0, 0, b) if d == 3]
@@ -226,6 +256,7 @@ def _labels(spec: FullGearSpec, runs, vol) -> dict[int, str]:
         if abs(r - spec.r_bore) < 1e-6:
             names[tag] = "bore"
             continue
+        x, y = rot2(np.array([[x, y]]), -spec.twist * zc)[0]            # back to the section at z = 0
         k = int(np.round(np.arctan2(-x, y) / -pitch))       # polar angle from +y, tooth k at -k pitch
         p = rot2(np.array([[x, y]]), k * pitch)[0]
         dist = [polyline_distance(p, ref) for _, ref in refs]

@@ -97,7 +97,12 @@ def _spec(profile, r_bore, web, b, teeth, st: WholeSettings, lines, side: str | 
     return FullGearSpec(np.asarray(profile.xy), np.asarray(profile.kind), np.asarray(profile.side), profile.z, r_bore,
                         b, web=web, loaded_teeth=tuple(teeth), h_flank=st.h_flank, h_tooth=st.h_tooth,
                         h_body=st.h_body, size_fields=exprs, h_fillet=st.h_fillet,
-                        fillet_side=side)
+                        fillet_side=side, twist=twist(profile))
+
+
+def twist(profile) -> float:
+    """tan(beta) / r of a member, rad/mm: its transverse section at z is the one at z = 0 turned by this z."""
+    return float(np.tan(profile.beta) / profile.r_ref) if abs(profile.beta) > 1e-12 else 0.0
 
 
 def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettings, workdir: str | Path,
@@ -105,8 +110,8 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     """CalculiX on the whole gears at pinion roll ``roll_deg`` (deg from the pitch point), pinion ``torque`` (N mm)."""
     model = lm.model
     p1, p2 = model.pinion, model.gear
-    if p2.internal or abs(p1.beta) > 1e-12:
-        raise NotImplementedError("the whole-gear CalculiX model is built for external spur pairs")
+    if p2.internal:
+        raise NotImplementedError("the whole-gear CalculiX model is built for external pairs")
     roll = np.radians(roll_deg)
     phi1 = model.phi_pitch - roll
     rb1, b = p1.r_base, model.face_width
@@ -148,8 +153,8 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
                  "nodes_pinion": len(m1.nodes), "nodes_gear": len(m2.nodes), "h_contact_mm": st.h_contact,
                  "settings": asdict(st), "mesh_wall": t_mesh}
     members = [Member(nm, m, ids["node_offset"][nm], (np.asarray(p.xy), np.asarray(p.kind), np.asarray(p.side)), sd,
-                      p.z, tuple(t)) for nm, m, p, sd, t in (("pinion", m1, p1, 1, lm.teeth1),
-                                                             ("gear", m2, p2, model.gear_side, lm.teeth2))]
+                      p.z, tuple(t), twist(p)) for nm, m, p, sd, t in (("pinion", m1, p1, 1, lm.teeth1),
+                                                                       ("gear", m2, p2, model.gear_side, lm.teeth2))]
     done = work / "result.json"
     if done.exists():
         rec = json.loads(done.read_text())

@@ -40,7 +40,8 @@ FACE_SPAN = 0.9
 class Member:
     """One gear of the deck: name, mesh (body frame), node offset in the deck (CalculiX id = offset + i + 1),
     transverse outline (xy (n, 2), kind, side codes) of tooth 0, the loaded side code (+1 right, -1 left),
-    the number of teeth and the loaded teeth."""
+    the number of teeth, the loaded teeth and the helical twist tan(beta) / r (rad/mm; the section at z is turned
+    by ``twist`` z, as in :mod:`fem.solids.full_gear`)."""
     name: str
     mesh: object
     offset: int
@@ -48,6 +49,7 @@ class Member:
     side: int
     z: int
     teeth: tuple[int, ...]
+    twist: float = 0.0
 
     @property
     def side_name(self) -> str:
@@ -61,10 +63,11 @@ def largest_principal(sig: np.ndarray) -> np.ndarray:
     return np.linalg.eigvalsh(T)[:, -1]
 
 
-def fillet_points(outline, side: int, face_width: float, step: float = 0.1) -> tuple[np.ndarray, np.ndarray]:
+def fillet_points(outline, side: int, face_width: float, step: float = 0.1,
+                  twist: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Points ``DEPTH`` inside the ``side`` fillet of tooth 0 (m, 3), about ``step`` apart along the fillet and
-    along the face over ``|z| <= FACE_SPAN b / 2``, and the angle (deg) of the outward normal at each from the
-    tooth's centre line (+y)."""
+    along the face over ``|z| <= FACE_SPAN b / 2`` (a helical gear's turned by ``twist`` z), and the angle (deg)
+    of the outward normal at each from the tooth's centre line (+y) in the transverse section."""
     xy, kind, sd = (np.asarray(a) for a in outline)
     idx = np.flatnonzero((kind == 1) & (sd == side))
     if idx.size < 2:
@@ -81,6 +84,8 @@ def fillet_points(outline, side: int, face_width: float, step: float = 0.1) -> t
     half = 0.5 * FACE_SPAN * face_width
     zs = np.linspace(-half, half, max(2, int(np.ceil(2 * half / step)) + 1))
     X = np.column_stack([np.repeat(q, len(zs), axis=0), np.tile(zs, len(q))])
+    c, s = np.cos(twist * X[:, 2]), np.sin(twist * X[:, 2])
+    X[:, 0], X[:, 1] = c * X[:, 0] - s * X[:, 1], s * X[:, 0] + c * X[:, 1]
     return X, np.repeat(angle, len(zs))
 
 
@@ -125,7 +130,7 @@ def fillet_stress(frd: str | Path, members: list[Member], face_width: float, ste
     out = {}
     for m in members:
         mesh = m.mesh
-        base, angle = fillet_points(m.outline, m.side, face_width, step)
+        base, angle = fillet_points(m.outline, m.side, face_width, step, m.twist)
         per, best, surf = {}, None, None
         for k in m.teeth:
             group = f"fillet_{k}_{m.side_name}"
