@@ -185,7 +185,9 @@ def _h_fillet(c) -> float:
 def _entry(c) -> dict:
     """One CalculiX run as the frozen reference stores it."""
     st = c.info["settings"]
-    return {"roll_deg": c.roll_deg, "te": c.te, "stiffness": c.stiffness,
+    pairs = sum(v > 0.01 for v in c.share(sorted(c.pair_load)).values())
+    return {"roll_deg": c.roll_deg, "contact": {1: "single", 2: "double"}.get(pairs, f"{pairs} pairs"),
+            "te": c.te, "stiffness": c.stiffness,
             "share": {str(k): v for k, v in c.share(sorted(c.pair_load)).items()},
             "pair_load": {str(k): v for k, v in c.pair_load.items()},
             "flank_pressure": c.info.get("p_flank"), "max_pressure": c.max_pressure,
@@ -219,7 +221,16 @@ def _freeze(path: str, case_path: str, torque: float, runs: dict, ladder, comman
            "convergence": [_entry(c) for c in ladder],
            "positions": [dict(_entry(c), ours_at_freeze=ours.get(rd)) for rd, c in runs.items()]}
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    Path(path).write_text(json.dumps(rec, indent=1) + "\n")
+    Path(path).write_text(json.dumps(_finite(rec), indent=1, allow_nan=False) + "\n")
+
+
+def _finite(v):
+    """The record with NaN (a quantity not read) as null: strict JSON."""
+    if isinstance(v, dict):
+        return {k: _finite(x) for k, x in v.items()}
+    if isinstance(v, list):
+        return [_finite(x) for x in v]
+    return None if isinstance(v, float) and not np.isfinite(v) else v
 
 
 def command_line(argv: list[str]) -> str:

@@ -95,10 +95,10 @@ def _rotate(points: np.ndarray, tooth: int, z: int) -> np.ndarray:
     return np.column_stack([c * points[:, 0] - s * points[:, 1], s * points[:, 0] + c * points[:, 1], points[:, 2]])
 
 
-def _where(k: int, X: np.ndarray, angle: float, value: float) -> dict:
+def _where(k: int, X: np.ndarray, angle: float | None, value: float) -> dict:
     x, y, zc = X
-    return {"tooth": int(k), "r_mm": float(np.hypot(x, y)), "z_mm": float(zc), "normal_deg": float(angle),
-            "value": float(value)}
+    return {"tooth": int(k), "r_mm": float(np.hypot(x, y)), "z_mm": float(zc),
+            "normal_deg": None if angle is None else float(angle), "value": float(value)}
 
 
 def fillet_stress(frd: str | Path, members: list[Member], face_width: float, step: float = 0.1) -> dict:
@@ -153,7 +153,7 @@ def fillet_stress(frd: str | Path, members: list[Member], face_width: float, ste
             s_on = largest_principal(sig[np.searchsorted(ids, on + m.offset + 1).clip(0, len(ids) - 1)])
             j = int(np.argmax(s_on))
             if surf is None or s_on[j] > surf["value"]:
-                surf = _where(k, mesh.nodes[on[j]], np.nan, s_on[j])
+                surf = _where(k, mesh.nodes[on[j]], None, s_on[j])
         if best is not None:
             value = best.pop("value")
             out[m.name] = {"max": value, "per_tooth": per, "at": best,
