@@ -116,7 +116,8 @@ def write_deck(path: str | os.PathLike, bodies: list[DeckBody], deck: CcxDeck) -
             raise ValueError(f"body {b.name}: C3D10 needs quadratic tetrahedra, got {tets.shape[1]} nodes")
         eids = np.arange(e0 + 1, e0 + len(tets) + 1)
         rows = np.column_stack([eids, tets])
-        elem_blocks.append(f"*ELEMENT, TYPE=C3D10, ELSET=E_{b.name}\n" + "\n".join(", ".join(map(str, r)) for r in rows))
+        elem_blocks.append(f"*ELEMENT, TYPE=C3D10, ELSET=E_{b.name}\n"
+                           + "\n".join(", ".join(map(str, r)) for r in rows))
         node_off[b.name], elem_off[b.name] = n0, e0
         n0, e0 = n0 + len(X), e0 + len(tets)
     out += elem_blocks
@@ -141,8 +142,8 @@ def write_deck(path: str | os.PathLike, bodies: list[DeckBody], deck: CcxDeck) -
             "*SURFACE INTERACTION, NAME=SI", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
             f"{deck.penalty:.10g}, {deck.tension:.10g}"]
     for p in deck.pairs:
-        out.append(f"*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE{', SMALL SLIDING' if deck.small_sliding else ''}"
-                   f"\nS{p.name}, M{p.name}")
+        sliding = ", SMALL SLIDING" if deck.small_sliding else ""
+        out.append(f"*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE{sliding}\nS{p.name}, M{p.name}")
     out += ["*BOUNDARY", "NFIX, 1, 3", f"{ref}, 1, 3", f"{rot}, 1, 2",
             "*STEP, INC=200", f"*STATIC, SOLVER={deck.solver}", ", ".join(f"{v:g}" for v in deck.increments),
             "*CLOAD", f"{rot}, 3, {deck.moment:.10g}",

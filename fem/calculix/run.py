@@ -20,7 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["CcxResult", "read_results", "read_nodal_stress", "run_ccx", "ccx_path", "CCX_INSTALL", "CcxNotFound", "CcxFailed"]
+__all__ = ["CcxResult", "read_results", "read_nodal_stress", "run_ccx", "ccx_path", "CCX_INSTALL", "CcxNotFound",
+           "CcxFailed"]
 
 CCX_INSTALL = "apt-get update && apt-get install -y calculix-ccx"
 
