@@ -109,7 +109,8 @@ def _cmd_validate(a: argparse.Namespace) -> int:
         try:
             return run_whole_validation(a.case, a.positions, a.out, band_um=a.band,
                                         refine=1 if a.refine is None else a.refine, fidelity=a.fidelity,
-                                        freeze=a.freeze, command=command_line(sys.argv[1:]), progress=not a.quiet)
+                                        freeze=a.freeze, command=command_line(sys.argv[1:]), progress=not a.quiet,
+                                        threads=a.threads, ladder=a.ladder)
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
             return 2
@@ -339,6 +340,12 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--freeze", metavar="JSON",
                    help="calculix-whole, and calculix on a [bevel] case: write the CalculiX results as a frozen "
                         "reference with provenance")
+    v.add_argument("--ladder", choices=["finer", "coarser", "both"], default="finer",
+                   help="calculix-whole: the --refine rungs at the first position refine the base contact band and "
+                        "fillets by 1.5 each (finer, default), coarsen them (coarser) or both (both); the first "
+                        "position is frozen at the finest rung")
+    v.add_argument("--threads", type=int, default=2,
+                   help="calculix-whole: CalculiX threads (OMP_NUM_THREADS, CCX_NPROC_EQUATION_SOLVER; default 2)")
     v.add_argument("--quiet", action="store_true", help="no progress output")
     v.set_defaults(func=_cmd_validate)
 

@@ -2,9 +2,31 @@
 
 The references ``tests/reference/*_calculix_whole.json`` were computed by ``ltca validate --reference
 calculix-whole ... --freeze FILE`` (the command is stored in each file, with the CalculiX version, the
-deck hashes, the mesh sizes and the contact-band refinement that checks their convergence). Bounds:
-loaded TE and mesh stiffness 2 %, load share 0.03. Each file names its case; our compliance of that case
-(default fidelity) is computed once per file.
+deck hashes, the mesh sizes, nodes, elements, wall times and the refinement ladder that checks their
+convergence): whole gears with every tooth built apart from our body (``fem.solids.full_gear``), the
+gear's bore fixed, the pinion's bore on a rigid body turning under the torque, penalty contact.
+
+Bounds (issue 18): loaded TE and mesh stiffness 2 %, load share 0.03, the flank peak pressure away from
+the face ends and edge contact 5 % (like with like: ours is ``max_flank_pressure_mpa``'s per-position
+value, CalculiX's the elliptic-fit peak over the face slices but the end ones), the root stress of each
+member 5 % (both: largest principal stress on the loaded teeth's tension-side fillets, ``|z| <= 0.45 b``).
+A file that does not record a quantity (the bore-20 variant was frozen before the root stress and the
+flank peak were read) is not compared in it. Where the figures we had when a reference was frozen
+(``ours_at_freeze``) are outside a bound, that check is a strict xfail naming the numbers, not a looser
+bound. Our compliance of each file's case (default fidelity) is computed once per file.
+
+``fzg_c14_calculix_whole.json``: FZG C14 with its own bores (pinion 40, gear 60 mm) at 200 N m, at pinion roll
+0 deg (the pitch point, single contact), -9 deg (double contact) and -4.5 deg (single contact just after the
+loaded transition near the inner point of single contact B: rigid B at -6.25 deg, loaded single contact from
+about -4.9 deg; the gear's highest point of single contact, where its root stress peaks). Contact band 150 um
+(0.75 of the nominal Hertz half-width), the tension-side fillets of the loaded teeth 0.675 mm (0.15 module);
+at 0 deg the ladder 225 / 150 / 100 um band with 1.0 / 0.675 / 0.45 mm fillets, 0 deg frozen at its finest.
+Its strict xfails: the flank peak at -9 and -4.5 deg, where CalculiX's 150 um band does not resolve the
+contact (at -9 deg the pinion's contact near its root has a Hertz half-width of about 127 um: one element;
+at 0 deg the ladder gives 1722 / 1506 / 1434 MPa, Richardson 1398, ours 1387); the pinion's root stress at
+every position, where ours at the default fidelity (1.35 mm elements on the fillet, read 0.05 mm inside,
+where the stress falls by about 6 % over those 0.05 mm) is not converged: ours at 0 deg coarse / default /
+fine 219.9 / 253.1 / 242.0 MPa, CalculiX 223.4 / 235.4 / 231.4 MPa over its ladder.
 """
 from __future__ import annotations
 
@@ -17,11 +39,15 @@ import pytest
 from conftest import ROOT
 
 REFERENCES = sorted((Path(__file__).resolve().parent / "reference").glob("*_calculix_whole.json"))
+BOUNDS = {"te": 0.02, "stiffness": 0.02, "share": 0.03, "flank_pressure": 0.05, "root_pinion": 0.05,
+          "root_gear": 0.05}
+QUANTITIES = tuple(BOUNDS)
 _LM: dict = {}
+_OURS: dict = {}
 
 
-def _records():
-    return [(p, i) for p in REFERENCES for i in range(len(json.loads(p.read_text())["positions"]))]
+def _rec(path: Path) -> dict:
+    return json.loads(path.read_text())
 
 
 def _lm(path: Path):
@@ -31,15 +57,60 @@ def _lm(path: Path):
         from ltca.cylindrical.loaded_model import Fidelity, prepare
         from ltca.cylindrical.model import build_model
         from ltca.cylindrical.run import cycle_rolls
-        case = load_case(ROOT / json.loads(path.read_text())["case"])
+        case = load_case(ROOT / _rec(path)["case"])
         _LM[path] = prepare(build_model(case), Fidelity.from_preset(FIDELITIES["default"], case.module),
                             cycle_rolls(case.positions, case.pinion.teeth), case.torques[0]), case
     return _LM[path]
 
 
+def _ours(path: Path, roll_deg: float) -> dict:
+    """Our figures at a reference position (:func:`ltca.verify.whole_check.ours_figures`), solved once."""
+    if (path, roll_deg) not in _OURS:
+        from ltca.cylindrical.loaded import solve_position
+        from ltca.verify.whole_check import ours_figures
+        lm, case = _lm(path)
+        r = solve_position(lm, np.radians(roll_deg), case.torques[0])
+        _OURS[path, roll_deg] = ours_figures(lm, r, case.torques[0])
+    return _OURS[path, roll_deg]
+
+
+def _reference_value(ref: dict, quantity: str):
+    if quantity.startswith("root_"):
+        return ref.get("root_stress", {}).get(quantity[5:], {}).get("max")
+    return ref.get(quantity)
+
+
+def deviation(quantity: str, ours: dict, ref: dict) -> float:
+    """How far ours is from the reference: relative (TE, stiffness, pressure, root stress) or the largest
+    absolute share difference."""
+    if quantity == "share":
+        teeth = set(ref["share"]) | set(ours["share"])
+        return max(abs(ours["share"].get(k, 0.0) - ref["share"].get(k, 0.0)) for k in teeth)
+    return abs(ours[quantity] / _reference_value(ref, quantity) - 1)
+
+
+def _cases():
+    out = []
+    for path in REFERENCES:
+        for i, ref in enumerate(_rec(path)["positions"]):
+            for q in QUANTITIES:
+                if _reference_value(ref, q) is None:
+                    continue
+                marks = []
+                then = ref.get("ours_at_freeze")
+                if then is not None and deviation(q, then, ref) > BOUNDS[q]:
+                    shown = (f"{then[q]} vs {ref[q]}" if q == "share" else
+                             f"{then[q]:.4g} vs {_reference_value(ref, q):.4g} "
+                             f"({100 * (then[q] / _reference_value(ref, q) - 1):+.1f} %)")
+                    marks = [pytest.mark.xfail(strict=True, reason=f"{q} at roll {ref['roll_deg']:g} deg: ours "
+                                                                   f"{shown}, outside {BOUNDS[q]} (when frozen)")]
+                out.append(pytest.param(path, i, q, marks=marks, id=f"{path.stem}-{ref['roll_deg']:g}-{q}"))
+    return out
+
+
 @pytest.mark.parametrize("path", REFERENCES, ids=lambda p: p.stem)
 def test_reference_records_its_provenance(path):
-    rec = json.loads(path.read_text())
+    rec = _rec(path)
     assert "Version" in rec["calculix_version"]
     assert rec["command"].startswith("ltca validate --reference calculix-whole")
     assert len(rec["convergence"]) >= 2, "a frozen reference needs its contact-band refinement"
@@ -47,40 +118,43 @@ def test_reference_records_its_provenance(path):
     assert abs(b["te"] / a["te"] - 1) < 0.005, "the CalculiX TE is not converged to 0.5 % over the refinement"
     for p in rec["positions"]:
         assert len(p["deck_sha256"]) == 64 and p["nodes"] > 0 and p["elements"] > 0 and p["h_contact_um"] > 0
+        if "root_stress" in p:                       # the references frozen with the root stress
+            assert p["ccx_wall_s"] > 0 and p["mesh_sizes_mm"]["h_fillet"] > 0 and p["contact"]
+            assert set(p["root_stress"]) == {"pinion", "gear"} and p["flank_pressure"] > 0
+            for member in p["root_stress"].values():
+                assert member["max"] == max(member["per_tooth"].values()) > 0
+                assert abs(member["at"]["z_mm"]) <= 0.45 * _lm(path)[0].model.face_width + 1e-9
+                assert member["surface"]["max"] > 0
 
 
-@pytest.mark.parametrize("path,index", _records(), ids=lambda v: v.stem if isinstance(v, Path) else str(v))
-def test_ours_against_frozen_calculix(path, index):
-    """Loaded TE and mesh stiffness within 2 %, load share within 0.03 of the frozen CalculiX values."""
-    from ltca.cylindrical.loaded import solve_position
-    from ltca.cylindrical.results import mesh_stiffness
-    from ltca.cylindrical.tca import ARCSEC_PER_RAD
-    ref = json.loads(path.read_text())["positions"][index]
-    lm, case = _lm(path)
-    torque = case.torques[0]
-    r = solve_position(lm, np.radians(ref["roll_deg"]), torque)
-    te = (r.theta - r.theta0) / lm.model.pair.ratio * ARCSEC_PER_RAD
-    assert te == pytest.approx(ref["te"], rel=0.02)
-    assert float(mesh_stiffness(lm, r.theta, r.theta0, torque)) == pytest.approx(ref["stiffness"], rel=0.02)
-    total = sum(r.pair_load.values())
-    for tooth, share in ref["share"].items():
-        assert abs(r.pair_load.get(int(tooth), 0.0) / total - share) < 0.03
+@pytest.mark.parametrize("path,index,quantity", _cases())
+def test_ours_against_frozen_calculix(path, index, quantity):
+    """TE and mesh stiffness within 2 %, shares within 0.03, flank peak and root stresses within 5 %."""
+    ref = _rec(path)["positions"][index]
+    ours = _ours(path, ref["roll_deg"])
+    theirs = ref["share"] if quantity == "share" else _reference_value(ref, quantity)
+    assert deviation(quantity, ours, ref) <= BOUNDS[quantity], f"{quantity}: ours {ours[quantity]} vs CalculiX {theirs}"
 
 
 @pytest.mark.slow
 @pytest.mark.calculix
 @pytest.mark.skipif(not REFERENCES, reason="no frozen reference")
 def test_regenerated_reference_matches_stored(tmp_path):
-    """Regenerate the last position of the first reference with CalculiX: same TE (0.5 %) and share."""
+    """Regenerate the last position of the FZG C14 reference with CalculiX: the same TE (0.5 %), shares (0.005),
+    flank peak and root stresses (1 %)."""
     import shutil
     if shutil.which("ccx") is None:
         pytest.skip("CalculiX (ccx) missing")
     from ltca.verify.whole_gear import solve_whole, whole_settings
-    path = REFERENCES[0]
-    ref = json.loads(path.read_text())["positions"][-1]
+    path = next(p for p in REFERENCES if p.name == "fzg_c14_calculix_whole.json")
+    ref = _rec(path)["positions"][-1]
     lm, case = _lm(path)
-    st = whole_settings(lm.b_nom, case.module, ref["h_contact_um"])
+    st = whole_settings(lm.b_nom, case.module, ref["h_contact_um"], threads=1,
+                        fillet_mm=ref["mesh_sizes_mm"]["h_fillet"])
     c = solve_whole(lm, ref["roll_deg"], case.torques[0], st, tmp_path, say=lambda m: None)
     assert c.te == pytest.approx(ref["te"], rel=0.005)
     for tooth, share in ref["share"].items():
         assert abs(c.share([int(tooth)])[int(tooth)] - share) < 0.005
+    assert c.info["p_flank"] == pytest.approx(ref["flank_pressure"], rel=0.01)
+    for member in ("pinion", "gear"):
+        assert c.root[member]["max"] == pytest.approx(ref["root_stress"][member]["max"], rel=0.01)

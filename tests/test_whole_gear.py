@@ -65,11 +65,85 @@ def test_whole_deck_writes(thin_rim_model, tmp_path):
 
 def test_full_gear_is_independent_of_our_body():
     """The reference solid and its CalculiX driver import neither our body nor our compliance."""
-    for path in (ROOT / "fem" / "solids" / "full_gear.py", ROOT / "ltca" / "verify" / "whole_gear.py"):
+    for path in (ROOT / "fem" / "solids" / "full_gear.py", ROOT / "ltca" / "verify" / "whole_gear.py",
+                 ROOT / "ltca" / "verify" / "whole_root.py"):
         tree = ast.parse(path.read_text())
         names = {n.module or "" for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
         names |= {a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
         assert not any("gear_body" in n or "compliance" in n for n in names), (path, names)
+
+
+def test_helical_full_gear_is_lofted_on_the_helicoid():
+    """Helical C14's pinion (beta 20 deg, b 40 mm): every tooth labelled, the flank vertices of tooth 0 within
+    1 um of the transverse outline turned by tan(beta) / r z (measured 0.3 um), over the whole face."""
+    from fem.solids.full_gear import FullGearSpec, build_full_gear
+    from fem.solids.section import rot2
+    from fem.solids.segment_gmsh import polyline_distance
+    from ltca.case import load_case
+    from ltca.cylindrical.model import build_model
+    from ltca.verify.whole_gear import twist
+    model = build_model(load_case(CASES / "helical_c14.toml"))
+    p, b = model.pinion, model.face_width
+    m = build_full_gear(FullGearSpec(p.xy, p.kind, p.side, p.z, model.r_bore1, b, loaded_teeth=(0,), h_flank=2.0,
+                                     h_tooth=3.0, h_body=6.0, ds=0.8, twist=twist(p)))
+    teeth = {int(n.split("_")[1]) for n in m.facets if n.startswith("flank_")}
+    assert teeth == set(range(-(p.z // 2), p.z - p.z // 2)) and {"bore", "ends", "root"} <= set(m.facets)
+    X = m.nodes[np.unique(m.facets["flank_0_right"][:, :3])]
+    d = [polyline_distance(rot2(x[None, :2], -twist(p) * x[2])[0], np.asarray(p.xy)) for x in X]
+    assert max(d) < 1e-3 and X[:, 2].min() == pytest.approx(-0.5 * b) and X[:, 2].max() == pytest.approx(0.5 * b)
+    assert twist(p) == pytest.approx(np.tan(np.radians(20.0)) / p.r_ref)
+
+
+def _frd_block(name: str, rows: dict) -> str:
+    """A nodal result block of a CalculiX .frd file (I10 node ids, E12.5 values)."""
+    lines = [f" -4  {name:<8}    6    1"] + [f" -5  C{i}          1    4    1    1" for i in range(6)]
+    lines += [" -1" + f"{n:10d}" + "".join(f"{v:12.5E}" for v in vals) for n, vals in rows.items()]
+    return "\n".join(lines + [" -3"]) + "\n"
+
+
+def test_read_nodal_stress_takes_the_last_block_in_voigt_order(tmp_path):
+    from fem.calculix.run import read_nodal_stress
+    frd = tmp_path / "job.frd"
+    frd.write_text(_frd_block("DISP", {1: [9.0] * 6}) + _frd_block("STRESS", {1: [1.0] * 6}) +
+                   _frd_block("STRESS", {1: [1.0, 2.0, 3.0, 4.0, 5.0, 6.0], 12: [-1e3, 0, 0, 0, 0, 250.5]}))
+    ids, sig = read_nodal_stress(frd)
+    assert ids.tolist() == [1, 12]
+    # CalculiX SXX SYY SZZ SXY SYZ SZX -> xx yy zz yz xz xy
+    assert np.allclose(sig[0], [1, 2, 3, 5, 6, 4]) and np.allclose(sig[1], [-1e3, 0, 0, 0, 250.5, 0])
+
+
+def test_fillet_stress_reads_the_tension_fillets_as_ours(tmp_path):
+    """0.05 mm inside the named fillets, |z| <= 0.45 b, largest principal stress, and where; the loaded
+    teeth's tension-side fillets are meshed at h_fillet, the other side left."""
+    from fem.solids.full_gear import FullGearSpec, build_full_gear
+    from ltca.case import load_case
+    from ltca.cylindrical.model import build_model
+    from ltca.verify.whole_root import Member, fillet_points, fillet_stress, largest_principal
+    model = build_model(load_case(CASES / "fzg_c14.toml"))
+    p, b = model.pinion, model.face_width
+    spec = dict(loaded_teeth=(0,), h_flank=2.0, h_tooth=3.0, h_body=6.0, ds=0.8)
+    m = build_full_gear(FullGearSpec(p.xy, p.kind, p.side, p.z, model.r_bore1, b, **spec))
+    fine = build_full_gear(FullGearSpec(p.xy, p.kind, p.side, p.z, model.r_bore1, b, h_fillet=0.6,
+                                        fillet_side="right", **spec))
+    edge = lambda mesh, g: np.linalg.norm(np.diff(mesh.nodes[mesh.facets[g][:, :2]], axis=1), axis=2).mean()
+    assert edge(fine, "fillet_0_right") < 0.6 * edge(m, "fillet_0_right")
+    assert edge(fine, "fillet_0_left") > 0.8 * edge(m, "fillet_0_left")          # the other side left as it was
+    # the read-out points lie 0.05 mm inside the fillet (in the mesh), over the face span
+    X, angle = fillet_points((p.xy, p.kind, p.side), 1, b)
+    fillet = np.asarray(p.xy)[(np.asarray(p.kind) == 1) & (np.asarray(p.side) == 1)]
+    d = np.min(np.linalg.norm(X[:, None, :2] - fillet[None], axis=2), axis=1)
+    assert np.all(d > 0.03) and np.all(d < 0.0501) and np.abs(X[:, 2]).max() == pytest.approx(0.45 * b)
+    assert np.all(np.hypot(X[:, 0], X[:, 1]) < np.hypot(*fillet.T).max())
+    # sigma_xx = 100 + z on every node (P2 interpolation is exact): the largest principal is 100 + 0.45 b
+    off = 7
+    frd = tmp_path / "job.frd"
+    frd.write_text(_frd_block("STRESS", {off + i + 1: [100.0 + z, 0, 0, 0, 0, 0] for i, z in enumerate(m.nodes[:, 2])}))
+    member = Member("pinion", m, off, (p.xy, p.kind, p.side), 1, p.z, (0, 1))
+    out = fillet_stress(frd, [member], b)["pinion"]
+    assert out["max"] == pytest.approx(100 + 0.45 * b, abs=1e-3)
+    assert set(out["per_tooth"]) == {0, 1} and out["per_tooth"][1] == pytest.approx(out["max"], abs=1e-3)
+    assert out["at"]["r_mm"] < p.r_base and out["surface"]["max"] <= 100 + 0.45 * b + 1e-9
+    assert largest_principal(np.array([[0, 0, 0, 0, 0, 5.0]]))[0] == pytest.approx(5.0)   # pure shear xy
 
 
 @pytest.mark.slow

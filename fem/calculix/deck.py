@@ -52,7 +52,9 @@ class CcxDeck:
     ``fixed`` is (body, facet group) held in all directions; ``driven`` is (body, facet group) tied to a
     rigid reference node on the world z axis through ``axis_origin`` that may only rotate about z, loaded
     by ``moment`` (N mm, counter-clockwise positive). ``penalty`` is the slope of the linear
-    pressure-overclosure law, MPa/mm; ``tension`` its small tension at large clearances, MPa."""
+    pressure-overclosure law, MPa/mm; ``tension`` its small tension at large clearances, MPa.
+    ``stress_output`` also writes the nodal stresses (``*EL FILE`` ``S``: extrapolated from the integration
+    points and averaged over the elements at a node) to the ``.frd`` file."""
     young: float
     poisson: float
     fixed: tuple[str, str]
@@ -65,6 +67,7 @@ class CcxDeck:
     increments: tuple[float, float, float, float] = (1.0, 1.0, 1e-4, 1.0)
     solver: str = "SPOOLES"
     small_sliding: bool = True
+    stress_output: bool = False
 
 
 def _face_numbers(tets: np.ndarray, tri: np.ndarray, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
@@ -113,7 +116,8 @@ def write_deck(path: str | os.PathLike, bodies: list[DeckBody], deck: CcxDeck) -
             raise ValueError(f"body {b.name}: C3D10 needs quadratic tetrahedra, got {tets.shape[1]} nodes")
         eids = np.arange(e0 + 1, e0 + len(tets) + 1)
         rows = np.column_stack([eids, tets])
-        elem_blocks.append(f"*ELEMENT, TYPE=C3D10, ELSET=E_{b.name}\n" + "\n".join(", ".join(map(str, r)) for r in rows))
+        elem_blocks.append(f"*ELEMENT, TYPE=C3D10, ELSET=E_{b.name}\n"
+                           + "\n".join(", ".join(map(str, r)) for r in rows))
         node_off[b.name], elem_off[b.name] = n0, e0
         n0, e0 = n0 + len(X), e0 + len(tets)
     out += elem_blocks
@@ -138,13 +142,13 @@ def write_deck(path: str | os.PathLike, bodies: list[DeckBody], deck: CcxDeck) -
             "*SURFACE INTERACTION, NAME=SI", "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
             f"{deck.penalty:.10g}, {deck.tension:.10g}"]
     for p in deck.pairs:
-        out.append(f"*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE{', SMALL SLIDING' if deck.small_sliding else ''}"
-                   f"\nS{p.name}, M{p.name}")
+        sliding = ", SMALL SLIDING" if deck.small_sliding else ""
+        out.append(f"*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE{sliding}\nS{p.name}, M{p.name}")
     out += ["*BOUNDARY", "NFIX, 1, 3", f"{ref}, 1, 3", f"{rot}, 1, 2",
             "*STEP, INC=200", f"*STATIC, SOLVER={deck.solver}", ", ".join(f"{v:g}" for v in deck.increments),
             "*CLOAD", f"{rot}, 3, {deck.moment:.10g}",
             "*NODE PRINT, NSET=NROT", "U", "*NODE PRINT, NSET=NFIX, TOTALS=ONLY", "RF",
             *[f"*CONTACT PRINT, SLAVE=S{p.name}, MASTER=M{p.name}\nCF" for p in deck.pairs],
-            "*CONTACT FILE", "CSTR", "*END STEP"]
+            "*CONTACT FILE", "CSTR", *(["*EL FILE", "S"] if deck.stress_output else []), "*END STEP"]
     Path(path).write_text("\n".join(out) + "\n")
     return {"ref": ref, "rot": rot, "node_offset": node_off, "elem_offset": elem_off}

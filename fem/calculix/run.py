@@ -3,7 +3,8 @@
 The results read are the rotation of the driven axis (``*NODE PRINT`` of the rotation node), the total
 reaction at the fixed nodes, the total contact force of each pair (``*CONTACT PRINT``, from ``job.dat``)
 and the contact pressure and opening at the slave nodes (``*CONTACT FILE``, last ``CONTACT`` block of
-``job.frd``) (CalculiX 2.20; G. Dhondt, *CalculiX CrunchiX User's Manual*).
+``job.frd``) (CalculiX 2.20; G. Dhondt, *CalculiX CrunchiX User's Manual*); with a deck's stress output,
+the nodal stresses (last ``STRESS`` block of ``job.frd``).
 
 Units: mm, N, MPa, rad.
 """
@@ -19,7 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["CcxResult", "read_results", "run_ccx", "ccx_path", "CCX_INSTALL", "CcxNotFound", "CcxFailed"]
+__all__ = ["CcxResult", "read_results", "read_nodal_stress", "run_ccx", "ccx_path", "CCX_INSTALL", "CcxNotFound",
+           "CcxFailed"]
 
 CCX_INSTALL = "apt-get update && apt-get install -y calculix-ccx"
 
@@ -125,6 +127,30 @@ def _frd_contact(frd: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         return np.zeros(0, int), np.zeros(0), np.zeros(0)
     v = np.array(vals)
     return np.array(ids), v[:, 0], v[:, 3]
+
+
+def read_nodal_stress(frd: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
+    """Node ids (k,) and stresses (k, 6), MPa, of the last ``STRESS`` block of a ``.frd`` file.
+
+    CalculiX writes the components SXX, SYY, SZZ, SXY, SYZ, SZX (nodal values: extrapolated from the
+    integration points, averaged over the elements at the node); they are returned in the Voigt order
+    xx, yy, zz, yz, xz, xy of :func:`fem.compliance.principal_max`. Empty arrays when there is no block."""
+    ids, vals, current = [], [], None
+    with open(frd, errors="replace") as fh:
+        for line in fh:
+            if line.startswith(" -4"):
+                current = line.split()[1]
+                if current == "STRESS":
+                    ids, vals = [], []
+            elif current == "STRESS" and line.startswith(" -1"):
+                ids.append(int(line[3:13]))
+                vals.append([float(line[13 + 12 * i:25 + 12 * i]) for i in range(6)])
+            elif line.startswith(" -3"):
+                current = None
+    if not ids:
+        return np.zeros(0, int), np.zeros((0, 6))
+    v = np.array(vals)
+    return np.array(ids), v[:, [0, 1, 2, 4, 5, 3]]
 
 
 def read_results(job: str | os.PathLike, rot_node: int, pairs: tuple[str, ...]) -> CcxResult:

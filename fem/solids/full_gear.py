@@ -4,7 +4,10 @@ The reference solid of the whole-gear CalculiX check: the transverse outline of 
 generated tooth outline rotated into place for each tooth) is one closed curve, the bore is a circular
 hole, and the face is extruded over the face width with gmsh's OpenCASCADE kernel. A webbed (thin-rim)
 gear is a toothed rim ring, a narrower web and a hub, each extruded over its own width and made
-conforming by ``occ.fragment``. Spur gears only.
+conforming by ``occ.fragment``. A helical gear (``twist`` = tan(beta) / r, rad/mm: the transverse section at
+z is the one at z = 0 turned by ``twist`` z, counter-clockwise) is lofted (``occ.addThruSections``, cubic
+B-spline surfaces) through the whole outline at sections at most ``max_turn`` apart in that turn, and its bore
+cut out; no web.
 
 Nothing here is shared with the compliance body of our solver: its own construction (OCC extrusion and
 fragments, not the built-in kernel's sweep), every tooth meshed (none left out), its own size field
@@ -59,6 +62,14 @@ class FullGearSpec:
         Extra gmsh ``MathEval`` sizes in x, y, z (mm), combined by their minimum (contact bands).
     ds : float
         Spacing of the spline through-points of the outline, mm.
+    h_fillet : float or None
+        Element size on the loaded teeth's fillets, mm, for their root stress; None: ``h_flank``.
+    fillet_side : {"left", "right"} or None
+        The side of the fillets refined to ``h_fillet`` (the loaded flank's: the tension side); None: both.
+    twist : float
+        tan(beta) / r of a helical gear, rad/mm (the sign of beta: the hand); 0 for spur.
+    max_turn : float
+        Largest turn between the loft's sections, rad (a helical gear).
     """
 
     outline: np.ndarray
@@ -74,6 +85,10 @@ class FullGearSpec:
     h_body: float = 5.0
     size_fields: tuple[str, ...] = ()
     ds: float = 0.4
+    h_fillet: float | None = None
+    fillet_side: str | None = None
+    twist: float = 0.0
+    max_turn: float = 0.02
 
     def __post_init__(self) -> None:
         r = np.hypot(*np.asarray(self.outline, float).T)
@@ -81,10 +96,15 @@ class FullGearSpec:
             raise ValueError(f"r_bore = {self.r_bore} must be in (0, {r.min():.4f}) (below the root)")
         if self.web is not None:
             r_rim, r_hub, width, off = self.web
-            if not (self.r_bore < r_hub < r_rim < r.min() and 0 < width and abs(off) + width / 2 <= self.face_width / 2):
+            if not (self.r_bore < r_hub < r_rim < r.min() and 0 < width
+                    and abs(off) + width / 2 <= self.face_width / 2):
                 raise ValueError(f"web = {self.web}: need r_bore < r_hub < r_rim < r_root and a web inside the face")
         if not 0 < self.h_flank <= self.h_tooth <= self.h_body:
             raise ValueError("element sizes must satisfy 0 < h_flank <= h_tooth <= h_body")
+        if self.h_fillet is not None and not 0 < self.h_fillet <= self.h_body:
+            raise ValueError(f"h_fillet = {self.h_fillet} must be in (0, h_body]")
+        if self.twist and (self.web is not None or not 0 < self.max_turn <= 0.2):
+            raise ValueError("a helical full gear has no web and needs 0 < max_turn <= 0.2 rad")
 
     @property
     def spec_hash(self) -> str:
@@ -94,6 +114,10 @@ class FullGearSpec:
             h.update(np.ascontiguousarray(a, dtype=float).tobytes())
         h.update(repr((self.z, self.r_bore, self.face_width, self.web, self.loaded_teeth, self.h_flank,
                        self.h_tooth, self.h_body, self.size_fields, self.ds)).encode())
+        if self.h_fillet is not None:
+            h.update(repr(("h_fillet", self.h_fillet, self.fillet_side)).encode())
+        if self.twist:
+            h.update(repr(("twist", self.twist, self.max_turn)).encode())
         return h.hexdigest()[:20]
 
 
@@ -126,15 +150,15 @@ def tooth_label(k: int, z: int) -> int:
     return (k + z // 2) % z - z // 2
 
 
-def _outline_loop(spec: FullGearSpec, runs) -> int:
-    """The closed OCC curve loop of all z teeth at z = -b/2."""
+def _outline_loop(spec: FullGearSpec, runs, z0: float | None = None, wire: bool = False) -> int:
+    """The closed OCC curve loop (or wire) of all z teeth at z0 (default -b/2), turned by ``twist`` z0."""
     import gmsh
     occ = gmsh.model.occ
-    z0 = -0.5 * spec.face_width
+    z0 = -0.5 * spec.face_width if z0 is None else z0
     first = prev = None
     curves = []
     for i in range(spec.z):
-        phi = -2 * np.pi * i / spec.z
+        phi = -2 * np.pi * i / spec.z + spec.twist * z0
         for j, (_, pts) in enumerate(runs):
             q = rot2(_thin(pts, spec.ds), phi)
             start = prev if prev is not None else occ.addPoint(q[0, 0], q[0, 1], z0)
@@ -144,7 +168,21 @@ def _outline_loop(spec: FullGearSpec, runs) -> int:
             mid = [occ.addPoint(x, y, z0) for x, y in q[1:-1]]
             curves.append(occ.addSpline([start, *mid, end]) if mid else occ.addLine(start, end))
             prev = end
-    return occ.addCurveLoop(curves)
+    return occ.addWire(curves) if wire else occ.addCurveLoop(curves)
+
+
+def _helical(spec: FullGearSpec, runs) -> list[tuple[int, int]]:
+    """The helical gear's volume: the outline lofted through sections along the face, the bore cut out."""
+    import gmsh
+    occ = gmsh.model.occ
+    b = spec.face_width
+    n = max(3, int(np.ceil(abs(spec.twist) * b / spec.max_turn)) + 1)
+    wires = [_outline_loop(spec, runs, z0, wire=True) for z0 in np.linspace(-0.5 * b, 0.5 * b, n)]
+    loft = [e for e in occ.addThruSections(wires, makeSolid=True, makeRuled=False) if e[0] == 3]
+    bore = occ.addCylinder(0, 0, -0.5 * b - 1.0, 0, 0, b + 2.0, spec.r_bore)
+    out = [e for e in occ.cut(loft, [(3, bore)])[0] if e[0] == 3]
+    occ.synchronize()
+    return out
 
 
 def _solid(spec: FullGearSpec, runs) -> list[tuple[int, int]]:
@@ -156,8 +194,10 @@ def _solid(spec: FullGearSpec, runs) -> list[tuple[int, int]]:
     import gmsh
     occ = gmsh.model.occ
     b = spec.face_width
-    outer = _outline_loop(spec, runs)
     z0 = -0.5 * b
+    if spec.twist:
+        return _helical(spec, runs)
+    outer = _outline_loop(spec, runs)
     if spec.web is None:
         bore = occ.addCurveLoop([occ.addCircle(0, 0, z0, spec.r_bore)])
         out = [(d, t) for d, t in occ.extrude([(2, occ.addPlaneSurface([outer, bore]))], 0, 0, b) if d == 3]
@@ -216,6 +256,7 @@ def _labels(spec: FullGearSpec, runs, vol) -> dict[int, str]:
         if abs(r - spec.r_bore) < 1e-6:
             names[tag] = "bore"
             continue
+        x, y = rot2(np.array([[x, y]]), -spec.twist * zc)[0]            # back to the section at z = 0
         k = int(np.round(np.arctan2(-x, y) / -pitch))       # polar angle from +y, tooth k at -k pitch
         p = rot2(np.array([[x, y]]), k * pitch)[0]
         dist = [polyline_distance(p, ref) for _, ref in refs]
@@ -228,13 +269,17 @@ def _labels(spec: FullGearSpec, runs, vol) -> dict[int, str]:
 
 
 def _size_field(spec: FullGearSpec, labels: dict[int, str]) -> None:
-    """h_flank at the loaded teeth, h_tooth at the others, graded (slope 0.5) to h_body; min with the extras."""
+    """h_flank at the loaded teeth (h_fillet on their fillets), h_tooth at the others, graded (slope 0.5) to
+    h_body; min with the extras."""
     import gmsh
     fld = gmsh.model.mesh.field
     tags = []
     loaded = {str(k) for k in spec.loaded_teeth}
-    groups = ([t for t, s in labels.items() if s.count("_") and s.split("_")[1] in loaded], spec.h_flank), \
-             ([t for t, s in labels.items() if s != "bore" and s != "ends"], spec.h_tooth)
+    on_loaded = [t for t, s in labels.items() if s.count("_") and s.split("_")[1] in loaded]
+    groups = [(on_loaded, spec.h_flank), ([t for t, s in labels.items() if s != "bore" and s != "ends"], spec.h_tooth)]
+    if spec.h_fillet is not None:
+        groups.append(([t for t in on_loaded if labels[t].startswith("fillet_")
+                        and labels[t].endswith(spec.fillet_side or "")], spec.h_fillet))
     for surfaces, h in groups:
         if not surfaces:
             continue

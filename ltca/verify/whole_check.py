@@ -2,14 +2,18 @@
 
 Per position: our loaded contact (:func:`ltca.verify.calculix.solve_ours`, compliance of our whole-gear
 body) and CalculiX on the independent full-gear model (:func:`ltca.verify.whole_gear.solve_whole`).
-Compared: loaded TE (arcsec of the gear), load share per pinion tooth, mesh stiffness N/(mm um), peak
-flank pressure (CalculiX: elliptic fit; information only) and wall time. The first position is also
-solved with the contact band refined ``refine`` times by 1.5 (CalculiX's own convergence check of the TE).
+Compared: loaded TE (arcsec of the gear), load share per pinion tooth, mesh stiffness N/(mm um), the
+flank peak pressure away from the face ends and edge contact (CalculiX: elliptic fit), the root stress of
+pinion and gear (largest principal stress on the loaded teeth's tension-side fillets;
+:mod:`ltca.verify.whole_root`) and wall time. The first position is also solved with the contact band and
+the fillets refined ``refine`` times by 1.5 (``ladder`` "finer"), coarsened ("coarser") or both ("both"):
+CalculiX's own convergence check.
 Bounds (issue 11): TE 3 %, share 0.03, stiffness 3 %. CalculiX runs are kept under ``out`` and reused.
 
-With ``freeze`` the CalculiX results (finest band at the first position, the base band elsewhere) are
-written as a frozen reference (JSON) with their provenance: CalculiX version, deck hash, mesh size,
-contact element size and the command that regenerates them (issue 18).
+With ``freeze`` the CalculiX results (finest rung at the first position, the base elsewhere) are written as
+a frozen reference (JSON) with their provenance: CalculiX version, date, deck hash, mesh sizes, nodes and
+elements, wall times, the refinement ladder and the command that regenerates them, and our figures at the
+time (issue 18).
 """
 from __future__ import annotations
 
@@ -26,9 +30,14 @@ import numpy as np
 from .calculix import penalty_slope, solve_ours
 from .whole_gear import stiffness, solve_whole, whole_settings
 
-__all__ = ["BOUNDS_WHOLE", "run_whole_validation", "ccx_version"]
+__all__ = ["BOUNDS_WHOLE", "run_whole_validation", "ccx_version", "ours_figures"]
 
 BOUNDS_WHOLE = {"te_rel": 0.03, "share_abs": 0.03, "stiffness_rel": 0.03}   # issue 11
+
+#: the refinement ladder at the first position: factors on the base contact band and fillet size, coarsest first
+LADDERS = {"finer": lambda n: [1.5 ** -i for i in range(n + 1)],
+           "coarser": lambda n: [1.5 ** (n - i) for i in range(n + 1)],
+           "both": lambda n: [1.5 ** (n - i) for i in range(2 * n + 1)]}
 
 
 def ccx_version() -> str:
@@ -38,19 +47,41 @@ def ccx_version() -> str:
     return next((ln.strip() for ln in out.splitlines() if "Version" in ln), out.strip())
 
 
-def _row(roll, mine, c, lm, torque, teeth):
+def ours_figures(lm, r, torque: float) -> dict:
+    """Our figures at one position as the frozen reference stores them: TE (arcsec of the gear), mesh stiffness
+    N/(mm um), pair shares, the flank peak away from edge contact (MPa; :func:`ltca.cylindrical.edges.position_edges`)
+    and the root stress of each member (largest over its loaded teeth, MPa)."""
+    from ..cylindrical.edges import position_edges
+    from ..cylindrical.tca import ARCSEC_PER_RAD
+    total = sum(r.pair_load.values()) or 1.0
+    return {"te": float((r.theta - r.theta0) / lm.model.pair.ratio * ARCSEC_PER_RAD),
+            "stiffness": stiffness(lm, r.theta, r.theta0, torque),
+            "share": {str(k): float(v / total) for k, v in sorted(r.pair_load.items())},
+            "flank_pressure": float(position_edges(lm, r, torque)["flank_peak"]),
+            "root_pinion": float(max(r.root1.values())), "root_gear": float(max(r.root2.values()))}
+
+
+def _root(c, member: str) -> float:
+    return float(c.root.get(member, {}).get("max", np.nan))
+
+
+def _row(roll, mine, r, c, lm, torque, teeth):
     sm, sc = mine.share(teeth), c.share(teeth)
-    k_ours = stiffness(lm, mine.info["theta"], mine.info["theta0"], torque)
+    o = ours_figures(lm, r, torque)
+    k_ours = o["stiffness"]
     return {"roll_deg": roll, "te_ours": mine.te, "te_ccx": c.te, "te_diff_pct": 100 * (mine.te / c.te - 1),
             "share_ours": sm, "share_ccx": sc, "share_diff": max(abs(sm[k] - sc[k]) for k in teeth),
             "k_ours": k_ours, "k_ccx": c.stiffness, "k_diff_pct": 100 * (k_ours / c.stiffness - 1),
-            "p_ours": mine.max_pressure, "p_ccx": c.max_pressure, "t_ours": mine.wall, "t_ccx": c.wall,
-            "ccx_nodes": c.info["nodes"], "band_um": 1e3 * c.info["h_contact_mm"]}
+            "p_ours": o["flank_pressure"], "p_ccx": c.info.get("p_flank", np.nan),
+            "sr1_ours": o["root_pinion"], "sr1_ccx": _root(c, "pinion"),
+            "sr2_ours": o["root_gear"], "sr2_ccx": _root(c, "gear"), "t_ours": mine.wall, "t_ccx": c.wall,
+            "ccx_nodes": c.info["nodes"], "band_um": 1e3 * c.info["h_contact_mm"], "ours": o}
 
 
 def run_whole_validation(case_path: str, positions: list[float], out: str, band_um: float | None = None,
                          refine: int = 1, fidelity: str = "default", freeze: str | None = None,
-                         command: str | None = None, progress: bool = True) -> int:
+                         command: str | None = None, progress: bool = True, threads: int = 2,
+                         ladder: str = "finer") -> int:
     """Ours against whole-gear CalculiX at pinion rolls ``positions`` (deg); returns 0 within bounds, else 1.
 
     Prints the table and writes ``whole_gear.csv`` and ``whole_gear.json`` to ``out``. Raises ``CaseError``
@@ -70,10 +101,14 @@ def run_whole_validation(case_path: str, positions: list[float], out: str, band_
         raise CaseError("--refine", refine, "an integer from 0 to 3")
     if band_um is not None and not 20.0 <= band_um <= 2000.0:
         raise CaseError("--band", band_um, "a contact-band element size from 20 to 2000 um")
+    if ladder not in LADDERS:
+        raise CaseError("--ladder", ladder, ", ".join(LADDERS))
+    if not 1 <= threads <= 64:
+        raise CaseError("--threads", threads, "an integer from 1 to 64")
     if fidelity not in FIDELITIES:
         raise CaseError("--fidelity", fidelity, ", ".join(FIDELITIES))
-    if abs(case.helix_angle) > 1e-9 or case.gear.internal:
-        raise CaseError("--case", case_path, "an external spur pair (the whole-gear CalculiX model is spur only)")
+    if case.gear.internal:
+        raise CaseError("--case", case_path, "an external pair (the whole-gear CalculiX model has no ring gear)")
     ccx_path()
     say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
     torque = case.torques[0]
@@ -81,27 +116,28 @@ def run_whole_validation(case_path: str, positions: list[float], out: str, band_
     lm = prepare(build_model(case), Fidelity.from_preset(FIDELITIES[fidelity], case.module),
                  cycle_rolls(case.positions, case.pinion.teeth), torque, progress=say)
     t_prepare = time.perf_counter() - t0
-    base = whole_settings(lm.b_nom, case.module, band_um)
+    base = whole_settings(lm.b_nom, case.module, band_um, threads=threads)
     outdir = Path(out)
     outdir.mkdir(parents=True, exist_ok=True)
 
     def ccx(roll, st):
         return solve_whole(lm, roll, torque, st, outdir / f"ccx_whole_r{roll:+.4f}_b{1e3 * st.h_contact:.0f}", say=say)
-    rows, ladder = [], []
+    rows, rungs = [], []
     for rd in rolls:
-        mine, _ = solve_ours(lm, np.radians(rd), torque)
+        mine, r = solve_ours(lm, np.radians(rd), torque)
         c = ccx(rd, base)
         teeth = sorted(set(mine.pair_load) | set(c.pair_load))
-        rows.append(_row(rd, mine, c, lm, torque, teeth))
-    for i in range(refine + 1):
-        h = base.h_contact / 1.5 ** i
-        ladder.append(ccx(rolls[0], dataclasses.replace(base, h_contact=h, half_band=base.half_band - base.h_contact + h,
-                                                        penalty=penalty_slope(h))))
+        rows.append(_row(rd, mine, r, c, lm, torque, teeth))
+    for f in LADDERS[ladder](refine):                                # coarsest first
+        h = base.h_contact * f
+        rungs.append(ccx(rolls[0], dataclasses.replace(base, h_contact=h, half_band=base.half_band - base.h_contact
+                                                        + h, penalty=penalty_slope(h), h_fillet=base.h_fillet * f)))
     sh = lambda d: "/".join(f"{d[k]:.3f}" for k in sorted(d))
     lines = [f"{case.name} at {torque * 1e-3:g} N m: ours ({fidelity}) against CalculiX on whole gears, every tooth "
-             f"(contact band {1e3 * base.h_contact:.0f} um)",
+             f"(contact band {1e3 * base.h_contact:.0f} um, tension-side fillets {1e3 * base.h_fillet:.0f} um)",
              f"{'roll':>6} {'TE ours':>8} {'TE ccx':>8} {'dTE%':>6} {'share ours':>17} {'share ccx':>17} {'dsh':>5} "
-             f"{'c ours':>6} {'c ccx':>6} {'dc%':>6} {'p ours':>6} {'p ccx':>6} {'t ours':>6} {'t ccx':>6}"]
+             f"{'c ours':>6} {'c ccx':>6} {'dc%':>6} {'p ours':>6} {'p ccx':>6} {'sF1 o':>6} {'sF1 c':>6} "
+             f"{'sF2 o':>6} {'sF2 c':>6} {'t ours':>6} {'t ccx':>6}"]
     ok_all = True
     for r in rows:
         ok = (abs(r["te_diff_pct"]) <= 100 * BOUNDS_WHOLE["te_rel"] and r["share_diff"] <= BOUNDS_WHOLE["share_abs"]
@@ -111,47 +147,90 @@ def run_whole_validation(case_path: str, positions: list[float], out: str, band_
         lines.append(f"{r['roll_deg']:6.2f} {r['te_ours']:8.3f} {r['te_ccx']:8.3f} {r['te_diff_pct']:+6.2f} "
                      f"{sh(r['share_ours']):>17} {sh(r['share_ccx']):>17} {r['share_diff']:5.3f} {r['k_ours']:6.2f} "
                      f"{r['k_ccx']:6.2f} {r['k_diff_pct']:+6.2f} {r['p_ours']:6.0f} {r['p_ccx']:6.0f} "
+                     f"{r['sr1_ours']:6.1f} {r['sr1_ccx']:6.1f} {r['sr2_ours']:6.1f} {r['sr2_ccx']:6.1f} "
                      f"{r['t_ours']:6.2f} {r['t_ccx']:6.0f}{'' if ok else '  OUT'}")
     lines.append(f"ours: compliance {t_prepare:.1f} s once, then the contact solve per position (t ours); CalculiX: "
-                 "mesh + solve per position (t ccx), s")
-    lines.append(f"CalculiX contact-band refinement at roll {rolls[0]:g} (band -> TE, stiffness, peak pressure, nodes, s):")
-    for c in ladder:
-        lines.append(f"  {1e3 * c.info['h_contact_mm']:5.0f} um  TE {c.te:8.3f}  c {c.stiffness:6.3f}  "
-                     f"p {c.max_pressure:6.0f}  {c.info['nodes']} nodes  {c.wall:.0f} s")
-    if len(ladder) >= 2:
-        lines.append(f"  TE change over the last refinement: {100 * (ladder[-1].te / ladder[-2].te - 1):+.2f} %")
+                 "mesh + solve per position (t ccx), s. p: flank peak away from the face ends / edge contact; sF1, "
+                 "sF2: root stress of pinion and gear, MPa")
+    lines.append(f"CalculiX refinement at roll {rolls[0]:g} (band, fillet -> TE, stiffness, flank peak, root stress, "
+                 "nodes, s):")
+    for c in rungs:
+        lines.append(f"  {1e3 * c.info['h_contact_mm']:5.0f} um {1e3 * _h_fillet(c):5.0f} um  "
+                     f"TE {c.te:8.3f}  c {c.stiffness:6.3f}  p {c.info.get('p_flank', np.nan):6.0f}  "
+                     f"sF {_root(c, 'pinion'):6.1f} {_root(c, 'gear'):6.1f}  {c.info['nodes']} nodes  {c.wall:.0f} s")
+    if len(rungs) >= 2:
+        lines.append(f"  TE change over the last refinement: {100 * (rungs[-1].te / rungs[-2].te - 1):+.2f} %")
     print("\n".join(lines))
     keys = ["roll_deg", "te_ours", "te_ccx", "te_diff_pct", "share_ours", "share_ccx", "share_diff", "k_ours",
-            "k_ccx", "k_diff_pct", "p_ours", "p_ccx", "t_ours", "t_ccx", "ccx_nodes", "band_um", "ok"]
+            "k_ccx", "k_diff_pct", "p_ours", "p_ccx", "sr1_ours", "sr1_ccx", "sr2_ours", "sr2_ccx", "t_ours", "t_ccx",
+            "ccx_nodes", "band_um", "ok"]
     fmt = lambda v: sh(v) if isinstance(v, dict) else str(v)
     (outdir / "whole_gear.csv").write_text(",".join(keys) + "\n" + "".join(
         ",".join(fmt(r[k]) for k in keys) + "\n" for r in rows))
-    (outdir / "whole_gear.json").write_text(json.dumps({"rows": rows, "refinement": [
-        {"h_contact_um": 1e3 * c.info["h_contact_mm"], "te": c.te, "stiffness": c.stiffness,
-         "max_pressure": c.max_pressure, "nodes": c.info["nodes"], "wall": c.wall} for c in ladder]}, indent=1))
+    (outdir / "whole_gear.json").write_text(json.dumps({"rows": rows, "refinement": [_entry(c) for c in rungs]},
+                                                       indent=1, default=float))
     if freeze:
-        finest = {rolls[0]: ladder[-1]} | {rd: ccx(rd, base) for rd in rolls[1:]}
-        _freeze(freeze, case_path, lm, torque, finest, ladder, command)
+        finest = {rolls[0]: rungs[-1]} | {rd: ccx(rd, base) for rd in rolls[1:]}
+        _freeze(freeze, case_path, torque, finest, rungs, command, {r["roll_deg"]: r["ours"] for r in rows},
+                t_prepare)
     return 0 if ok_all else 1
 
 
-def _freeze(path: str, case_path: str, lm, torque: float, runs: dict, ladder, command: str | None) -> None:
-    """Write the frozen CalculiX reference (see the module docstring)."""
+def _h_fillet(c) -> float:
+    """The fillet element size of a run, mm (runs before the fillet refinement: the flank's)."""
+    st = c.info["settings"]
+    return st.get("h_fillet") or st["h_flank"]
+
+
+def _entry(c) -> dict:
+    """One CalculiX run as the frozen reference stores it."""
+    st = c.info["settings"]
+    pairs = sum(v > 0.01 for v in c.share(sorted(c.pair_load)).values())
+    return {"roll_deg": c.roll_deg, "contact": {1: "single", 2: "double"}.get(pairs, f"{pairs} pairs"),
+            "te": c.te, "stiffness": c.stiffness,
+            "share": {str(k): v for k, v in c.share(sorted(c.pair_load)).items()},
+            "pair_load": {str(k): v for k, v in c.pair_load.items()},
+            "flank_pressure": c.info.get("p_flank"), "max_pressure": c.max_pressure,
+            "root_stress": c.root, "deck_sha256": c.info["deck_sha256"], "nodes": c.info["nodes"],
+            "elements": c.info["elements"], "nodes_pinion": c.info["nodes_pinion"], "nodes_gear": c.info["nodes_gear"],
+            "h_contact_um": 1e3 * c.info["h_contact_mm"], "h_fillet_um": 1e3 * _h_fillet(c),
+            "mesh_sizes_mm": {k: st.get(k) for k in ("h_contact", "half_band", "h_flank", "h_tooth", "h_body",
+                                                      "h_fillet")},
+            "penalty_mpa_per_mm": st["penalty"], "threads": st["threads"], "ccx_wall_s": c.info["ccx_wall"],
+            "mesh_wall_s": c.info["mesh_wall"], "wall_s": c.wall}
+
+
+def _freeze(path: str, case_path: str, torque: float, runs: dict, ladder, command: str | None, ours: dict,
+            t_prepare: float) -> None:
+    """Write the frozen CalculiX reference (see the module docstring); ``ours`` (roll -> :func:`ours_figures`)
+    records our figures when it was frozen, so that a test can name a known disagreement."""
     rec = {"case": case_path, "torque_nm": torque * 1e-3, "calculix_version": ccx_version(),
+           "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
            "model": "whole gears, every tooth, bore fixed (gear) / bore on a rigid body turning about the axis "
                     "(pinion); fem.solids.full_gear + ltca.verify.whole_gear",
            "command": command or "", "units": {"te": "arcsec of the gear", "stiffness": "N/(mm um)",
-                                               "pair_load": "N", "max_pressure": "MPa"},
-           "convergence": [{"roll_deg": c.roll_deg, "h_contact_um": 1e3 * c.info["h_contact_mm"], "te": c.te,
-                            "stiffness": c.stiffness, "max_pressure": c.max_pressure} for c in ladder],
-           "positions": [{"roll_deg": rd, "te": c.te, "stiffness": c.stiffness,
-                          "share": {str(k): v for k, v in c.share(sorted(c.pair_load)).items()},
-                          "pair_load": {str(k): v for k, v in c.pair_load.items()}, "max_pressure": c.max_pressure,
-                          "deck_sha256": c.info["deck_sha256"], "nodes": c.info["nodes"],
-                          "elements": c.info["elements"], "h_contact_um": 1e3 * c.info["h_contact_mm"],
-                          "ccx_wall_s": c.info["ccx_wall"]} for rd, c in runs.items()]}
+                                               "pair_load": "N", "max_pressure": "MPa", "flank_pressure": "MPa",
+                                               "root_stress": "MPa, r_mm and z_mm in mm"},
+           "definitions": {
+               "flank_pressure": "largest elliptic-fit peak over face slices of b/14, the one at each face end left "
+                                 "out (ours: flank peak away from edge contact, ltca.cylindrical.edges)",
+               "root_stress": "largest principal nodal stress on the loaded teeth's tension-side fillets, "
+                              "|z| <= 0.45 b (ltca.verify.whole_root; ours: fem.compliance root_max)",
+               "max_pressure": "largest elliptic-fit peak over all face slices (face ends included)"},
+           "ours_compliance_wall_s": t_prepare,
+           "convergence": [_entry(c) for c in ladder],
+           "positions": [dict(_entry(c), ours_at_freeze=ours.get(rd)) for rd, c in runs.items()]}
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    Path(path).write_text(json.dumps(rec, indent=1) + "\n")
+    Path(path).write_text(json.dumps(_finite(rec), indent=1, allow_nan=False) + "\n")
+
+
+def _finite(v):
+    """The record with NaN (a quantity not read) as null: strict JSON."""
+    if isinstance(v, dict):
+        return {k: _finite(x) for k, x in v.items()}
+    if isinstance(v, list):
+        return [_finite(x) for x in v]
+    return None if isinstance(v, float) and not np.isfinite(v) else v
 
 
 def command_line(argv: list[str]) -> str:

@@ -10,16 +10,20 @@ node may only turn about the gear axis, and the pinion torque acts there. As in
 stiffness estimate, not ours) and ``delta`` is added back to the rotation read.
 
 Read per position: loaded TE (arcsec of the gear, unloaded part removed), load per pinion tooth, mesh
-stiffness ``(T / r_b1) / (b (theta - theta0) r_b1)`` in N/(mm um) (as :func:`ltca.cylindrical.results.mesh_stiffness`)
-and the elliptic-fit peak flank pressure. Each run is kept in its folder with ``result.json``
-(keyed by the deck's SHA-256) and reused.
+stiffness ``(T / r_b1) / (b (theta - theta0) r_b1)`` in N/(mm um) (as
+:func:`ltca.cylindrical.results.mesh_stiffness`), the elliptic-fit peak flank pressure over the whole face
+and away from the face ends (``info["p_flank"]``, as ours keeps its flank peak apart from edge contact),
+and the root stress of each member (largest principal nodal stress on the loaded teeth's tension-side
+fillets, as ours reads it: :mod:`ltca.verify.whole_root`). Each run is kept in its folder with
+``result.json`` (keyed by the deck's SHA-256) and reused; read-outs a record lacks are added from the
+kept ``job.frd``.
 """
 from __future__ import annotations
 
 import hashlib
 import json
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -33,8 +37,9 @@ from geometry.pair import rotation_z
 from ..cylindrical.loaded_model import LoadedModel
 from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact
 from .calculix import _fitted_peak, contact_lines, penalty_slope
+from .whole_root import Member, fillet_stress
 
-__all__ = ["WholeSettings", "WholeResult", "whole_settings", "solve_whole", "stiffness"]
+__all__ = ["WholeSettings", "WholeResult", "whole_settings", "solve_whole", "stiffness", "FLANK_SLICES"]
 
 
 @dataclass(frozen=True)
@@ -51,13 +56,17 @@ class WholeSettings:
     halo: float = 0.6         # contact surfaces reach this far from the unloaded contact lines
     preload: float = 0.2      # initial overclosure rotation, fraction of an ISO-like TE estimate (c' = 14)
     threads: int = 2
+    h_fillet: float | None = None   # the loaded teeth's fillets (root stress); None: h_flank
 
 
-def whole_settings(b_nom: float, module: float, band_um: float | None = None) -> WholeSettings:
-    """Settings with a contact band of ``band_um`` (default 3/4 of the nominal Hertz half-width ``b_nom``)."""
+def whole_settings(b_nom: float, module: float, band_um: float | None = None, threads: int = 2,
+                   fillet_mm: float | None = None) -> WholeSettings:
+    """Settings with a contact band of ``band_um`` (default 3/4 of the nominal Hertz half-width ``b_nom``) and
+    tension-side fillets of ``fillet_mm`` (default 0.15 module) on the loaded teeth."""
     h = band_um * 1e-3 if band_um else 0.75 * b_nom
     return WholeSettings(h_contact=h, half_band=1.3 * b_nom + h, h_flank=0.3 * module, h_tooth=0.5 * module,
-                         h_body=1.2 * module, penalty=penalty_slope(h), halo=2.0 * b_nom)
+                         h_body=1.2 * module, penalty=penalty_slope(h), halo=2.0 * b_nom, threads=threads,
+                         h_fillet=fillet_mm or 0.15 * module)
 
 
 @dataclass
@@ -70,6 +79,7 @@ class WholeResult:
     max_pressure: float
     wall: float
     info: dict
+    root: dict = field(default_factory=dict)    # member -> {"max": MPa, "per_tooth", "at"} (whole_root)
 
     def share(self, teeth) -> dict:
         tot = sum(self.pair_load.values()) or 1.0
@@ -82,11 +92,17 @@ def stiffness(lm: LoadedModel, theta: float, theta0: float, torque: float) -> fl
     return float((torque / rb) / (b * (theta - theta0) * rb * 1e3))
 
 
-def _spec(profile, r_bore, web, b, teeth, st: WholeSettings, lines) -> FullGearSpec:
+def _spec(profile, r_bore, web, b, teeth, st: WholeSettings, lines, side: str | None = None) -> FullGearSpec:
     exprs = tuple(line_size_expression(ln, st.h_contact, st.half_band, st.grow_across, st.grow_depth) for ln in lines)
     return FullGearSpec(np.asarray(profile.xy), np.asarray(profile.kind), np.asarray(profile.side), profile.z, r_bore,
                         b, web=web, loaded_teeth=tuple(teeth), h_flank=st.h_flank, h_tooth=st.h_tooth,
-                        h_body=st.h_body, size_fields=exprs)
+                        h_body=st.h_body, size_fields=exprs, h_fillet=st.h_fillet,
+                        fillet_side=side, twist=twist(profile))
+
+
+def twist(profile) -> float:
+    """tan(beta) / r of a member, rad/mm: its transverse section at z is the one at z = 0 turned by this z."""
+    return float(np.tan(profile.beta) / profile.r_ref) if abs(profile.beta) > 1e-12 else 0.0
 
 
 def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettings, workdir: str | Path,
@@ -94,8 +110,8 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     """CalculiX on the whole gears at pinion roll ``roll_deg`` (deg from the pitch point), pinion ``torque`` (N mm)."""
     model = lm.model
     p1, p2 = model.pinion, model.gear
-    if p2.internal or abs(p1.beta) > 1e-12:
-        raise NotImplementedError("the whole-gear CalculiX model is built for external spur pairs")
+    if p2.internal:
+        raise NotImplementedError("the whole-gear CalculiX model is built for external pairs")
     roll = np.radians(roll_deg)
     phi1 = model.phi_pitch - roll
     rb1, b = p1.r_base, model.face_width
@@ -110,11 +126,12 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
                             N[len(N) // 2] @ Ti[:3, :3].T) for _, P, N in lines]
     L1, L2 = body_lines(T1), body_lines(T2)
     t0 = time.perf_counter()
-    m1 = build_full_gear(_spec(p1, model.r_bore1, model.web1, b, lm.teeth1, st, L1))
-    m2 = build_full_gear(_spec(p2, model.r_bore2, model.web2, b, lm.teeth2, st, L2))
-    t_mesh = time.perf_counter() - t0
     side2 = "right" if model.gear_side > 0 else "left"
-    master = tuple(n for n in m2.facets for j in lm.teeth2 if n in (f"flank_{j}_{side2}", f"tip_{j}", f"tip_{j}_left", f"tip_{j}_right"))
+    m1 = build_full_gear(_spec(p1, model.r_bore1, model.web1, b, lm.teeth1, st, L1, "right"))
+    m2 = build_full_gear(_spec(p2, model.r_bore2, model.web2, b, lm.teeth2, st, L2, side2))
+    t_mesh = time.perf_counter() - t0
+    master = tuple(n for n in m2.facets for j in lm.teeth2
+                   if n in (f"flank_{j}_{side2}", f"tip_{j}", f"tip_{j}_left", f"tip_{j}_right"))
     f1, f2, pairs, loaded = dict(m1.facets), dict(m2.facets), [], []
     for i, (k, _, _) in enumerate(lines):
         f1[f"band_{k}"] = facets_near_lines(m1, (f"flank_{k}_right",), [L1[i]], st.halo)
@@ -125,7 +142,8 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     m2 = type(m2)(m2.nodes, m2.tets, f2, m2.spec_hash, m2.seconds)
     delta = st.preload * hint
     deck = CcxDeck(young=model.case.young, poisson=model.case.poisson, fixed=("gear", "bore"),
-                   driven=("pinion", "bore"), moment=-torque, pairs=tuple(pairs), penalty=st.penalty)
+                   driven=("pinion", "bore"), moment=-torque, pairs=tuple(pairs), penalty=st.penalty,
+                   stress_output=True)
     work = Path(workdir)
     work.mkdir(parents=True, exist_ok=True)
     ids = write_deck(work / "job.inp", [DeckBody("pinion", m1, rotation_z(phi1 - delta)), DeckBody("gear", m2, T2)],
@@ -134,13 +152,20 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     mesh_info = {"nodes": len(m1.nodes) + len(m2.nodes), "elements": len(m1.tets) + len(m2.tets),
                  "nodes_pinion": len(m1.nodes), "nodes_gear": len(m2.nodes), "h_contact_mm": st.h_contact,
                  "settings": asdict(st), "mesh_wall": t_mesh}
+    members = [Member(nm, m, ids["node_offset"][nm], (np.asarray(p.xy), np.asarray(p.kind), np.asarray(p.side)), sd,
+                      p.z, tuple(t), twist(p)) for nm, m, p, sd, t in (("pinion", m1, p1, 1, lm.teeth1),
+                                                                       ("gear", m2, p2, model.gear_side, lm.teeth2))]
     done = work / "result.json"
     if done.exists():
         rec = json.loads(done.read_text())
         if rec.get("deck_sha256") == digest:
             say(f"whole-gear CalculiX roll {roll_deg:+.3f} deg, band {1e3 * st.h_contact:.0f} um: reusing {done}")
+            if ("root" not in rec or "p_flank" not in rec["info"]) and (work / "job.frd").exists():
+                res = read_results(work / "job", ids["rot"], tuple(p.name for p in pairs))
+                _readouts(rec, work, res, m1, L1, members, b)
+                done.write_text(json.dumps(rec, indent=1))
             return WholeResult(roll_deg, rec["te"], {int(k): v for k, v in rec["pair_load"].items()}, rec["stiffness"],
-                               rec["max_pressure"], rec["wall"], rec["info"])
+                               rec["max_pressure"], rec["wall"], rec["info"], rec.get("root", {}))
     say(f"whole-gear CalculiX roll {roll_deg:+.3f} deg, band {1e3 * st.h_contact:.0f} um: {3 * mesh_info['nodes']} "
         f"dofs, {len(lines)} contact line(s), meshed in {t_mesh:.1f} s; solving ...")
     wall_ccx = run_ccx(work / "job.inp", threads=st.threads)
@@ -156,7 +181,27 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
                            p_max_nodal=res.max_pressure, reaction=res.fixed_reaction.tolist()))
     say(f"  ccx {wall_ccx:.0f} s: TE {out.te:.3f} arcsec, loads { {k: round(v, 1) for k, v in loads.items()} } N, "
         f"c {out.stiffness:.2f} N/(mm um), p fit {p_fit:.0f} MPa")
-    done.write_text(json.dumps({"deck_sha256": digest, "te": out.te, "pair_load": out.pair_load,
-                                "stiffness": out.stiffness, "max_pressure": out.max_pressure, "wall": out.wall,
-                                "info": out.info}, indent=1))
+    rec = {"deck_sha256": digest, "te": out.te, "pair_load": out.pair_load, "stiffness": out.stiffness,
+           "max_pressure": out.max_pressure, "wall": out.wall, "info": out.info}
+    done.write_text(json.dumps(rec, indent=1))            # kept before the stress read-out: a run is costly
+    _readouts(rec, work, res, m1, L1, members, b)
+    out.root = rec["root"]
+    done.write_text(json.dumps(rec, indent=1))
+    say(f"  flank peak (face-end slices left out) {rec['info']['p_flank']:.0f} MPa; root stress "
+        + ", ".join(f"{k} {v['max']:.0f} MPa (tooth {v['at']['tooth']}, r {v['at']['r_mm']:.2f} mm, "
+                    f"z {v['at']['z_mm']:+.2f} mm)" for k, v in out.root.items()))
     return out
+
+
+#: face slices (b/14 each, as our default fidelity's) whose elliptic-fit peaks make the flank peak: all but the
+#: one at each face end, which ours counts as face-end edge contact (:mod:`ltca.cylindrical.edges`)
+FLANK_SLICES = 14
+
+
+def _readouts(rec: dict, work: Path, res, m1, L1, members, b: float) -> None:
+    """Add the root stress (``rec["root"]``) and the flank peak away from the face ends (``rec["info"]["p_flank"]``,
+    MPa, the elliptic fit over the inner slices) to a run's record."""
+    cut = b / FLANK_SLICES
+    rec["info"]["p_flank"] = _fitted_peak(m1, L1, res.contact_nodes, res.contact_pressure, b,
+                                          window=(-0.5 * b + cut, 0.5 * b - cut))
+    rec["root"] = fillet_stress(work / "job.frd", members, b)
