@@ -311,7 +311,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="analytic references and tables (default); calculix: the CalculiX cross-check on our body "
                         "(slow: 5-15 min per position on 2 cores, plus 30-45 min per pressure ladder); calculix-whole: "
                         "CalculiX on whole gears with every tooth and their own supports, independent of our body "
-                        "(15-20 min per position on 2 cores)")
+                        "(7-25 min per CalculiX run on one thread of a busy machine, FZG C14)")
     v.add_argument("--case", default=None,
                    help="case for --reference calculix (default cases/fzg_c14.toml); a [bevel] case with the "
                         "analytic reference runs the bevel checks (elliptic Hertz, light-load limit, V-H table)")

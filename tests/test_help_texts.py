@@ -29,7 +29,7 @@ def test_no_seed_jargon_and_calculix_times_agree():
     flat = " ".join(text.split())
     assert not re.search(r"seed[ -]?0\d\d", README + flat, re.I)
     # the whole-gear CalculiX check: the same minutes per position in the README and in --help
-    readme = re.search(r"Spur only; (\d+-\d+) min per position", README).group(1)
-    assert f"({readme} min per position on 2 cores)" in flat
+    readme = re.search(r"(\d+-\d+) min per CalculiX run", README).group(1)
+    assert f"({readme} min per CalculiX run" in flat
     # the check on our body
     assert "5-15 min per position on 2 cores" in README and "5-15 min per position on 2 cores" in flat
