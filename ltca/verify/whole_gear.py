@@ -9,6 +9,13 @@ node may only turn about the gear axis, and the pinion torque acts there. As in
 :mod:`ltca.verify.calculix`, the pinion starts a small rotation ``delta`` into the gear (an ISO-like
 stiffness estimate, not ours) and ``delta`` is added back to the rotation read.
 
+Internal pairs (issue 15: the satellite of an eccentric reducer in its central wheel): the wheel is the
+ring out to ``model.r_bore2`` and is held on that outer cylinder (``rim``, the housing); the pinion
+(satellite) bore turns about the satellite axis. Such a pair has a large backlash, so the satellite is first
+turned by the rigid rotation to first contact ``theta0`` (the unloaded geometry, not our compliance), the
+contact lines are taken there, and ``delta`` is counted on top of it. With ``fine_lines_only`` only the teeth
+that carry a contact line get the fine flank size (a 50/51-tooth pair is too large otherwise).
+
 Read per position: loaded TE (arcsec of the gear, unloaded part removed), load per pinion tooth, mesh
 stiffness ``(T / r_b1) / (b (theta - theta0) r_b1)`` in N/(mm um) (as :func:`ltca.cylindrical.results.mesh_stiffness`)
 and the elliptic-fit peak flank pressure. Each run is kept in its folder with ``result.json``
@@ -26,7 +33,7 @@ import numpy as np
 
 from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
 from fem.calculix.run import read_results, run_ccx
-from fem.solids.full_gear import FullGearSpec, build_full_gear
+from fem.solids.full_gear import FullGearSpec, build_full_gear, tooth_label
 from fem.solids.refinement import ContactLine, facets_near_lines, line_size_expression
 from geometry.pair import rotation_z
 
@@ -51,6 +58,7 @@ class WholeSettings:
     halo: float = 0.6         # contact surfaces reach this far from the unloaded contact lines
     preload: float = 0.2      # initial overclosure rotation, fraction of an ISO-like TE estimate (c' = 14)
     threads: int = 2
+    fine_lines_only: bool = False   # h_flank only on the teeth with a contact line (else every tooth in the model)
 
 
 def whole_settings(b_nom: float, module: float, band_um: float | None = None) -> WholeSettings:
@@ -84,9 +92,13 @@ def stiffness(lm: LoadedModel, theta: float, theta0: float, torque: float) -> fl
 
 def _spec(profile, r_bore, web, b, teeth, st: WholeSettings, lines) -> FullGearSpec:
     exprs = tuple(line_size_expression(ln, st.h_contact, st.half_band, st.grow_across, st.grow_depth) for ln in lines)
+    if st.fine_lines_only:
+        pitch = 2 * np.pi / profile.z
+        teeth = sorted({tooth_label(int(np.round(np.arctan2(-x, y) / -pitch)), profile.z)
+                        for x, y, _ in (0.5 * (np.asarray(ln.p0) + np.asarray(ln.p1)) for ln in lines)})
     return FullGearSpec(np.asarray(profile.xy), np.asarray(profile.kind), np.asarray(profile.side), profile.z, r_bore,
                         b, web=web, loaded_teeth=tuple(teeth), h_flank=st.h_flank, h_tooth=st.h_tooth,
-                        h_body=st.h_body, size_fields=exprs)
+                        h_body=st.h_body, size_fields=exprs, internal=bool(profile.internal))
 
 
 def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettings, workdir: str | Path,
@@ -94,15 +106,18 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     """CalculiX on the whole gears at pinion roll ``roll_deg`` (deg from the pitch point), pinion ``torque`` (N mm)."""
     model = lm.model
     p1, p2 = model.pinion, model.gear
-    if p2.internal or abs(p1.beta) > 1e-12:
-        raise NotImplementedError("the whole-gear CalculiX model is built for external spur pairs")
+    if p1.internal or abs(p1.beta) > 1e-12:
+        raise NotImplementedError("the whole-gear CalculiX model is built for spur pairs with an external pinion")
     roll = np.radians(roll_deg)
     phi1 = model.phi_pitch - roll
     rb1, b = p1.r_base, model.face_width
     t_all = time.perf_counter()
     hint = torque / (rb1 ** 2 * 14.0e3 * b)
-    lines = contact_lines(lm, phi1, cap=1.2 * hint * rb1 + 2e-3)
-    T1, T2 = rotation_z(phi1), model.pair.gear_frame(phi1)
+    theta0 = float(first_contact(model, phi1, lm.teeth1))
+    lead = theta0 if p2.internal else 0.0        # external pairs are calibrated at the pitch point (theta0 ~ 0)
+    lines = [(k, P @ rotation_z(-lead)[:3, :3].T, N @ rotation_z(-lead)[:3, :3].T)
+             for k, P, N in contact_lines(lm, phi1, cap=1.2 * hint * rb1 + 2e-3, theta0=lead)]
+    T1, T2 = rotation_z(phi1 - lead), model.pair.gear_frame(phi1)
 
     def body_lines(T):
         Ti = np.linalg.inv(T)
@@ -111,10 +126,12 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     L1, L2 = body_lines(T1), body_lines(T2)
     t0 = time.perf_counter()
     m1 = build_full_gear(_spec(p1, model.r_bore1, model.web1, b, lm.teeth1, st, L1))
+    support2 = "rim" if p2.internal else "bore"
     m2 = build_full_gear(_spec(p2, model.r_bore2, model.web2, b, lm.teeth2, st, L2))
     t_mesh = time.perf_counter() - t0
     side2 = "right" if model.gear_side > 0 else "left"
-    master = tuple(n for n in m2.facets for j in lm.teeth2 if n in (f"flank_{j}_{side2}", f"tip_{j}", f"tip_{j}_left", f"tip_{j}_right"))
+    master = tuple(n for n in m2.facets for j in lm.teeth2
+                   if n in (f"flank_{j}_{side2}", f"tip_{j}", f"tip_{j}_left", f"tip_{j}_right"))
     f1, f2, pairs, loaded = dict(m1.facets), dict(m2.facets), [], []
     for i, (k, _, _) in enumerate(lines):
         f1[f"band_{k}"] = facets_near_lines(m1, (f"flank_{k}_right",), [L1[i]], st.halo)
@@ -123,8 +140,8 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
         loaded.append(k)
     m1 = type(m1)(m1.nodes, m1.tets, f1, m1.spec_hash, m1.seconds)
     m2 = type(m2)(m2.nodes, m2.tets, f2, m2.spec_hash, m2.seconds)
-    delta = st.preload * hint
-    deck = CcxDeck(young=model.case.young, poisson=model.case.poisson, fixed=("gear", "bore"),
+    delta = lead + st.preload * hint
+    deck = CcxDeck(young=model.case.young, poisson=model.case.poisson, fixed=("gear", support2),
                    driven=("pinion", "bore"), moment=-torque, pairs=tuple(pairs), penalty=st.penalty)
     work = Path(workdir)
     work.mkdir(parents=True, exist_ok=True)
@@ -146,7 +163,6 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     wall_ccx = run_ccx(work / "job.inp", threads=st.threads)
     res = read_results(work / "job", ids["rot"], tuple(p.name for p in pairs))
     theta = delta - res.rotation
-    theta0 = float(first_contact(model, phi1, lm.teeth1))
     loads = {int(k): 0.0 for k in lm.teeth1}
     loads.update({k: float(np.linalg.norm(res.pair_force.get(p.name, np.zeros(3)))) for k, p in zip(loaded, pairs)})
     p_fit = _fitted_peak(m1, L1, res.contact_nodes, res.contact_pressure, b)
