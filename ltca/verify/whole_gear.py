@@ -15,6 +15,11 @@ ring out to ``model.r_bore2`` and is held on that outer cylinder (``rim``, the h
 turned by the rigid rotation to first contact ``theta0`` (the unloaded geometry, not our compliance), the
 contact lines are taken there, and ``delta`` is counted on top of it. With ``fine_lines_only`` only the teeth
 that carry a contact line get the fine flank size (a 50/51-tooth pair is too large otherwise).
+Most pairs of a tooth difference of one touch at a tip edge: the wheel's tip corner on the satellite flank, or
+the satellite's tip corner on the wheel flank. CalculiX's surface-to-surface contact pushes along the master's
+normal, so the smooth side is the master: where the unloaded contact line lies at the wheel's tip circle
+(within :data:`CORNER`) the wheel band is the slave and the satellite's flank and fillet the master; elsewhere
+the satellite's flank and tip are the slave (a pinion-slave deck, as for external pairs).
 
 Read per position: loaded TE (arcsec of the gear, unloaded part removed), load per pinion tooth, mesh
 stiffness ``(T / r_b1) / (b (theta - theta0) r_b1)`` in N/(mm um) (as :func:`ltca.cylindrical.results.mesh_stiffness`)
@@ -41,7 +46,9 @@ from ..cylindrical.loaded_model import LoadedModel
 from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact
 from .calculix import _fitted_peak, contact_lines, penalty_slope
 
-__all__ = ["WholeSettings", "WholeResult", "whole_settings", "solve_whole", "stiffness"]
+__all__ = ["WholeSettings", "WholeResult", "whole_settings", "solve_whole", "stiffness", "CORNER"]
+
+CORNER = 0.25   # mm: an internal pair's unloaded contact line within this of the wheel's tip circle is a corner contact
 
 
 @dataclass(frozen=True)
@@ -134,9 +141,14 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
                    if n in (f"flank_{j}_{side2}", f"tip_{j}", f"tip_{j}_left", f"tip_{j}_right"))
     f1, f2, pairs, loaded = dict(m1.facets), dict(m2.facets), [], []
     for i, (k, _, _) in enumerate(lines):
-        f1[f"band_{k}"] = facets_near_lines(m1, (f"flank_{k}_right",), [L1[i]], st.halo)
+        own = (f"flank_{k}_right",)
+        wheel_corner = p2.internal and np.hypot(*(0.5 * (L2[i].p0 + L2[i].p1))[:2]) < p2.r_tip + CORNER
+        if p2.internal:      # the satellite's tip edge (a corner contact) or its fillet below the form circle
+            own += (f"fillet_{k}_right",) if wheel_corner else (f"tip_{k}", f"tip_{k}_right")
+        f1[f"band_{k}"] = facets_near_lines(m1, own, [L1[i]], st.halo)
         f2[f"band_{k}"] = facets_near_lines(m2, master, [L2[i]], st.halo)
-        pairs.append(ContactPairSpec(f"P{i}", ("pinion", (f"band_{k}",)), ("gear", (f"band_{k}",))))
+        sides = [("pinion", (f"band_{k}",)), ("gear", (f"band_{k}",))]
+        pairs.append(ContactPairSpec(f"P{i}", *(sides[::-1] if wheel_corner else sides)))
         loaded.append(k)
     m1 = type(m1)(m1.nodes, m1.tets, f1, m1.spec_hash, m1.seconds)
     m2 = type(m2)(m2.nodes, m2.tets, f2, m2.spec_hash, m2.seconds)
