@@ -103,13 +103,26 @@ def _cmd_validate(a: argparse.Namespace) -> int:
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
             return 2
+    if a.reference == "calculix-whole" and _planetary(a.case):
+        from fem.calculix.run import CcxNotFound
+        from .verify.planetary_whole import run_planetary_whole_validation
+        from .verify.whole_check import command_line
+        try:
+            return run_planetary_whole_validation(a.case, a.positions or [-1.8], a.torque, a.out, band_um=a.band,
+                                                  refine=1 if a.refine is None else a.refine, fidelity=a.fidelity,
+                                                  freeze=a.freeze, command=command_line(sys.argv[1:]),
+                                                  progress=not a.quiet, cache=a.cache)
+        except CcxNotFound as exc:
+            print(f"ltca validate: {exc}", file=sys.stderr)
+            return 2
     if a.reference == "calculix-whole":
         from fem.calculix.run import CcxNotFound
         from .verify.whole_check import command_line, run_whole_validation
         try:
             return run_whole_validation(a.case, a.positions, a.out, band_um=a.band,
-                                        refine=1 if a.refine is None else a.refine, fidelity=a.fidelity,
-                                        freeze=a.freeze, command=command_line(sys.argv[1:]), progress=not a.quiet,
+                                        refine=1 if a.refine is None else a.refine,
+                                        fidelity=a.fidelity or "default", freeze=a.freeze,
+                                        command=command_line(sys.argv[1:]), progress=not a.quiet,
                                         threads=a.threads, ladder=a.ladder)
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
@@ -332,11 +345,12 @@ def build_parser() -> argparse.ArgumentParser:
                    help="where CalculiX refines a mid-face window of the narrowest contact three times for a "
                         "converged peak pressure: auto (positions whose narrowest contact has < 3 band elements per "
                         "half-width, other than the band ladder's first position), all or none")
-    v.add_argument("--fidelity", choices=["coarse", "default", "fine"], default="default",
-                   help="our fidelity for --reference calculix-whole")
-    v.add_argument("--torque", type=_positive_torque, metavar="NM",
-                   help="pinion torque of --reference calculix on a [bevel] case, N m (default: the case's middle "
-                        "torque)")
+    v.add_argument("--fidelity", choices=["coarse", "default", "fine"], default=None,
+                   help="our fidelity for --reference calculix-whole (default: default; a [satellite] case: its own)")
+    v.add_argument("--torque", type=_positive_torque, default=None, metavar="NM",
+                   help="calculix on a [bevel] case: the pinion torque, N m (default: the case's middle torque); "
+                        "calculix-whole on a [satellite] case: the satellite torque, N m (required there)")
+    v.add_argument("--cache", default=None, help="calculix-whole on a [satellite] case: our mesh cache directory")
     v.add_argument("--freeze", metavar="JSON",
                    help="calculix-whole, and calculix on a [bevel] case: write the CalculiX results as a frozen "
                         "reference with provenance")

@@ -7,7 +7,8 @@ gear is a toothed rim ring, a narrower web and a hub, each extruded over its own
 conforming by ``occ.fragment``. A helical gear (``twist`` = tan(beta) / r, rad/mm: the transverse section at
 z is the one at z = 0 turned by ``twist`` z, counter-clockwise) is lofted (``occ.addThruSections``, cubic
 B-spline surfaces) through the whole outline at sections at most ``max_turn`` apart in that turn, and its bore
-cut out; no web.
+cut out; no web. An internal gear (``internal``) is the ring between its toothed inner outline and the outer
+circle ``r_bore`` where the housing holds it (issue 15's central wheel); spur only.
 
 Nothing here is shared with the compliance body of our solver: its own construction (OCC extrusion and
 fragments, not the built-in kernel's sweep), every tooth meshed (none left out), its own size field
@@ -15,7 +16,8 @@ fragments, not the built-in kernel's sweep), every tooth meshed (none left out),
 ``h_body``) and the caller's contact-band size expressions (:func:`fem.solids.refinement.line_size_expression`).
 
 Surfaces are labelled by where they are: ``flank_{k}_{left|right}``, ``fillet_{k}_{left|right}``,
-``tip_{k}``, ``root``, ``bore``, ``ends`` (z = +-b/2) and ``body_faces`` (the groove faces of a web).
+``tip_{k}``, ``root``, ``bore`` (internal: ``rim``, the outer cylinder), ``ends`` (z = +-b/2) and ``body_faces``
+(the groove faces of a web).
 Tooth ``k`` (``-z//2 <= k < z - z//2``) is the outline rotated by ``-k 2 pi / z``, as in
 :mod:`fem.solids.spec`. Units mm; points (n, 3); 10-node tetrahedra in the meshio order.
 """
@@ -40,7 +42,7 @@ _SIDE = {-1: "left", 0: "", 1: "right"}
 
 @dataclass(frozen=True)
 class FullGearSpec:
-    """What to mesh: every tooth of an external spur gear, its bore and optionally a web.
+    """What to mesh: every tooth of a spur gear, its bore (internal: outer rim) and optionally a web.
 
     Parameters
     ----------
@@ -49,7 +51,8 @@ class FullGearSpec:
     z : int
         Number of teeth.
     r_bore : float
-        Bore radius, mm.
+        Radius of the support cylinder, mm: the bore (external gear, below the root) or the outer rim held in
+        the housing (internal gear, beyond the root).
     face_width : float
         Axial width, mm; the solid spans z in [-b/2, b/2].
     web : tuple (r_rim, r_hub, web_width, web_offset) or None
@@ -70,6 +73,8 @@ class FullGearSpec:
         tan(beta) / r of a helical gear, rad/mm (the sign of beta: the hand); 0 for spur.
     max_turn : float
         Largest turn between the loft's sections, rad (a helical gear).
+    internal : bool
+        Internal teeth (the outline's teeth point to the axis): the solid is the ring out to ``r_bore``.
     """
 
     outline: np.ndarray
@@ -89,10 +94,15 @@ class FullGearSpec:
     fillet_side: str | None = None
     twist: float = 0.0
     max_turn: float = 0.02
+    internal: bool = False
 
     def __post_init__(self) -> None:
         r = np.hypot(*np.asarray(self.outline, float).T)
-        if not 0 < self.r_bore < r.min():
+        if self.internal:
+            if not self.r_bore > r.max() or self.web is not None:
+                raise ValueError(f"r_bore = {self.r_bore} must exceed {r.max():.4f} (the internal gear's root) and "
+                                 "an internal gear has no web here")
+        elif not 0 < self.r_bore < r.min():
             raise ValueError(f"r_bore = {self.r_bore} must be in (0, {r.min():.4f}) (below the root)")
         if self.web is not None:
             r_rim, r_hub, width, off = self.web
@@ -105,6 +115,8 @@ class FullGearSpec:
             raise ValueError(f"h_fillet = {self.h_fillet} must be in (0, h_body]")
         if self.twist and (self.web is not None or not 0 < self.max_turn <= 0.2):
             raise ValueError("a helical full gear has no web and needs 0 < max_turn <= 0.2 rad")
+        if self.twist and self.internal:
+            raise ValueError("an internal full gear is spur only here (twist = 0)")
 
     @property
     def spec_hash(self) -> str:
@@ -118,7 +130,14 @@ class FullGearSpec:
             h.update(repr(("h_fillet", self.h_fillet, self.fillet_side)).encode())
         if self.twist:
             h.update(repr(("twist", self.twist, self.max_turn)).encode())
+        if self.internal:
+            h.update(b"internal")
         return h.hexdigest()[:20]
+
+    @property
+    def support(self) -> str:
+        """Name of the support surface: ``bore`` (external) or ``rim`` (internal)."""
+        return "rim" if self.internal else "bore"
 
 
 def _runs(spec: FullGearSpec) -> list[tuple[str, np.ndarray]]:
@@ -199,8 +218,9 @@ def _solid(spec: FullGearSpec, runs) -> list[tuple[int, int]]:
         return _helical(spec, runs)
     outer = _outline_loop(spec, runs)
     if spec.web is None:
-        bore = occ.addCurveLoop([occ.addCircle(0, 0, z0, spec.r_bore)])
-        out = [(d, t) for d, t in occ.extrude([(2, occ.addPlaneSurface([outer, bore]))], 0, 0, b) if d == 3]
+        circle = occ.addCurveLoop([occ.addCircle(0, 0, z0, spec.r_bore)])
+        loops = [circle, outer] if spec.internal else [outer, circle]      # first loop: the outer boundary
+        out = [(d, t) for d, t in occ.extrude([(2, occ.addPlaneSurface(loops))], 0, 0, b) if d == 3]
         occ.synchronize()
         return out
     r_rim, r_hub, width, off = spec.web
@@ -254,7 +274,7 @@ def _labels(spec: FullGearSpec, runs, vol) -> dict[int, str]:
             names[tag] = "ends" if abs(abs(zc) - half) < 1e-6 else "body_faces"
             continue
         if abs(r - spec.r_bore) < 1e-6:
-            names[tag] = "bore"
+            names[tag] = spec.support
             continue
         x, y = rot2(np.array([[x, y]]), -spec.twist * zc)[0]            # back to the section at z = 0
         k = int(np.round(np.arctan2(-x, y) / -pitch))       # polar angle from +y, tooth k at -k pitch
@@ -276,7 +296,8 @@ def _size_field(spec: FullGearSpec, labels: dict[int, str]) -> None:
     tags = []
     loaded = {str(k) for k in spec.loaded_teeth}
     on_loaded = [t for t, s in labels.items() if s.count("_") and s.split("_")[1] in loaded]
-    groups = [(on_loaded, spec.h_flank), ([t for t, s in labels.items() if s != "bore" and s != "ends"], spec.h_tooth)]
+    groups = [(on_loaded, spec.h_flank), ([t for t, s in labels.items() if s not in ("bore", "rim", "ends")],
+                                          spec.h_tooth)]
     if spec.h_fillet is not None:
         groups.append(([t for t in on_loaded if labels[t].startswith("fillet_")
                         and labels[t].endswith(spec.fillet_side or "")], spec.h_fillet))
@@ -301,6 +322,21 @@ _OPTIONS = {"General.NumThreads": 1, "Mesh.MeshSizeFromPoints": 0, "Mesh.MeshSiz
             "Mesh.Algorithm3D": 1, "Mesh.Optimize": 1, "Mesh.ElementOrder": 1}
 
 
+def _remove_flat_tets(rounds: int = 3) -> None:
+    """Optimise the linear tetrahedra (Netgen) while any is flat (quality SICN <= 1e-9).
+
+    The Delaunay mesher can leave a tetrahedron of four coplanar vertices where the points of a regular
+    size field line up (seen in the 51-tooth internal ring); CalculiX stops on its zero Jacobian. Meshes
+    without one are left exactly as they are."""
+    import gmsh
+    for _ in range(rounds):
+        tags = gmsh.model.mesh.getElementsByType(4)[0]
+        if not len(tags) or np.min(gmsh.model.mesh.getElementQualities(tags, "minSICN")) > 1e-9:
+            return
+        gmsh.model.mesh.optimize("Netgen")
+    raise RuntimeError("full gear: flat tetrahedra remain after Netgen optimisation")
+
+
 def build_full_gear(spec: FullGearSpec, progress: bool = False) -> SegmentMesh:
     """Build and mesh the full gear ``spec`` with quadratic tetrahedra; returns the mesh record.
 
@@ -319,6 +355,7 @@ def build_full_gear(spec: FullGearSpec, progress: bool = False) -> SegmentMesh:
             labels = _labels(spec, runs, vol)
             _size_field(spec, labels)
             gmsh.model.mesh.generate(3)
+            _remove_flat_tets()
             gmsh.model.mesh.setOrder(2)
             nodes, tets, facets = extract_mesh(labels, 2)
         finally:

@@ -8,5 +8,5 @@ and solves the multi-pair contact with the cylindrical chain; ``run`` and ``repo
 ``ltca forming``, ``ltca tca`` and ``ltca run`` of such a case.
 
 May import: geometry (geometry.satellite and the cylindrical geometry), fem, ltca.case, ltca.errors,
-ltca.results, ltca.cylindrical. Nothing imports it except ltca.cli.
+ltca.results, ltca.cylindrical. Nothing imports it except ltca.cli and ltca.verify (its CalculiX check).
 """

@@ -88,15 +88,18 @@ def ccx_ladder(b_nom: float, module: float, refine: int = 2, penalty_factor: flo
     out = []
     for level in range(refine + 1):
         h = (h0 or 0.75 * b_nom) / 1.5 ** level
-        out.append(CcxSettings(h_contact=h, half_band=1.3 * b_nom + h, h_flank=body[0] * module, h_body=body[1] * module,
-                               penalty=penalty_slope(h, penalty_factor), halo=2.0 * b_nom))
+        out.append(CcxSettings(h_contact=h, half_band=1.3 * b_nom + h, h_flank=body[0] * module,
+                               h_body=body[1] * module, penalty=penalty_slope(h, penalty_factor), halo=2.0 * b_nom))
     return out
 
 
-def contact_lines(lm: LoadedModel, phi1: float, cap: float, nz: int = 15) -> list[tuple[int, np.ndarray, np.ndarray]]:
+def contact_lines(lm: LoadedModel, phi1: float, cap: float, nz: int = 15,
+                  theta0: float = 0.0) -> list[tuple[int, np.ndarray, np.ndarray]]:
     """Unloaded contact lines of the pinion teeth whose gap is below ``cap`` (mm) at ``phi1``.
 
-    Returns (tooth, points (m, 3) in the world frame, pinion outward normals (m, 3) in the world frame)."""
+    ``theta0`` (rad): the gaps are counted after this rigid pinion rotation to first contact (a pair with
+    backlash, such as the eccentric internal pair). Returns (tooth, points (m, 3) in the world frame,
+    pinion outward normals (m, 3) in the world frame)."""
     model = lm.model
     s_lo, s_hi = (arc_length(r, model.pinion.r_base) for r in model.pinion_range())
     b = model.face_width
@@ -105,7 +108,7 @@ def contact_lines(lm: LoadedModel, phi1: float, cap: float, nz: int = 15) -> lis
     out = []
     for k in lm.teeth1:
         fg = flank_gaps(model, phi1, k, S, Z)
-        g = np.where(np.isfinite(fg.gap) & (fg.lever1 > 0), fg.gap, np.inf)
+        g = np.where(np.isfinite(fg.gap) & (fg.lever1 > 0), fg.gap - fg.lever1 * theta0, np.inf)
         i = np.argmin(g, axis=0)
         j = np.arange(nz)
         keep = g[i, j] < cap

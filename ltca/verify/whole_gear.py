@@ -9,6 +9,18 @@ node may only turn about the gear axis, and the pinion torque acts there. As in
 :mod:`ltca.verify.calculix`, the pinion starts a small rotation ``delta`` into the gear (an ISO-like
 stiffness estimate, not ours) and ``delta`` is added back to the rotation read.
 
+Internal pairs (issue 15: the satellite of an eccentric reducer in its central wheel): the wheel is the
+ring out to ``model.r_bore2`` and is held on that outer cylinder (``rim``, the housing); the pinion
+(satellite) bore turns about the satellite axis. Such a pair has a large backlash, so the satellite is first
+turned by the rigid rotation to first contact ``theta0`` (the unloaded geometry, not our compliance), the
+contact lines are taken there, and ``delta`` is counted on top of it. With ``fine_lines_only`` only the teeth
+that carry a contact line get the fine flank size (a 50/51-tooth pair is too large otherwise).
+Most pairs of a tooth difference of one touch at a tip edge: the wheel's tip corner on the satellite flank, or
+the satellite's tip corner on the wheel flank. CalculiX's surface-to-surface contact pushes along the master's
+normal, so the smooth side is the master: where the unloaded contact line lies at the wheel's tip circle
+(within :data:`CORNER`) the wheel band is the slave and the satellite's flank and fillet the master; elsewhere
+the satellite's flank and tip are the slave (a pinion-slave deck, as for external pairs).
+
 Read per position: loaded TE (arcsec of the gear, unloaded part removed), load per pinion tooth, mesh
 stiffness ``(T / r_b1) / (b (theta - theta0) r_b1)`` in N/(mm um) (as
 :func:`ltca.cylindrical.results.mesh_stiffness`), the elliptic-fit peak flank pressure over the whole face
@@ -30,7 +42,7 @@ import numpy as np
 
 from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
 from fem.calculix.run import read_results, run_ccx
-from fem.solids.full_gear import FullGearSpec, build_full_gear
+from fem.solids.full_gear import FullGearSpec, build_full_gear, tooth_label
 from fem.solids.refinement import ContactLine, facets_near_lines, line_size_expression
 from geometry.pair import rotation_z
 
@@ -39,7 +51,9 @@ from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact
 from .calculix import _fitted_peak, contact_lines, penalty_slope
 from .whole_root import Member, fillet_stress
 
-__all__ = ["WholeSettings", "WholeResult", "whole_settings", "solve_whole", "stiffness", "FLANK_SLICES"]
+__all__ = ["WholeSettings", "WholeResult", "whole_settings", "solve_whole", "stiffness", "FLANK_SLICES", "CORNER"]
+
+CORNER = 0.25   # mm: an internal pair's unloaded contact line within this of the wheel's tip circle is a corner contact
 
 
 @dataclass(frozen=True)
@@ -57,6 +71,7 @@ class WholeSettings:
     preload: float = 0.2      # initial overclosure rotation, fraction of an ISO-like TE estimate (c' = 14)
     threads: int = 2
     h_fillet: float | None = None   # the loaded teeth's fillets (root stress); None: h_flank
+    fine_lines_only: bool = False   # h_flank only on the teeth with a contact line (else every tooth in the model)
 
 
 def whole_settings(b_nom: float, module: float, band_um: float | None = None, threads: int = 2,
@@ -94,10 +109,14 @@ def stiffness(lm: LoadedModel, theta: float, theta0: float, torque: float) -> fl
 
 def _spec(profile, r_bore, web, b, teeth, st: WholeSettings, lines, side: str | None = None) -> FullGearSpec:
     exprs = tuple(line_size_expression(ln, st.h_contact, st.half_band, st.grow_across, st.grow_depth) for ln in lines)
+    if st.fine_lines_only:
+        pitch = 2 * np.pi / profile.z
+        teeth = sorted({tooth_label(int(np.round(np.arctan2(-x, y) / -pitch)), profile.z)
+                        for x, y, _ in (0.5 * (np.asarray(ln.p0) + np.asarray(ln.p1)) for ln in lines)})
     return FullGearSpec(np.asarray(profile.xy), np.asarray(profile.kind), np.asarray(profile.side), profile.z, r_bore,
                         b, web=web, loaded_teeth=tuple(teeth), h_flank=st.h_flank, h_tooth=st.h_tooth,
                         h_body=st.h_body, size_fields=exprs, h_fillet=st.h_fillet,
-                        fillet_side=side, twist=twist(profile))
+                        fillet_side=side, twist=twist(profile), internal=bool(profile.internal))
 
 
 def twist(profile) -> float:
@@ -110,15 +129,19 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     """CalculiX on the whole gears at pinion roll ``roll_deg`` (deg from the pitch point), pinion ``torque`` (N mm)."""
     model = lm.model
     p1, p2 = model.pinion, model.gear
-    if p2.internal:
-        raise NotImplementedError("the whole-gear CalculiX model is built for external pairs")
+    if p1.internal or (p2.internal and abs(p1.beta) > 1e-12):
+        raise NotImplementedError("the whole-gear CalculiX model is built for an external pinion (internal pairs: "
+                                  "spur only)")
     roll = np.radians(roll_deg)
     phi1 = model.phi_pitch - roll
     rb1, b = p1.r_base, model.face_width
     t_all = time.perf_counter()
     hint = torque / (rb1 ** 2 * 14.0e3 * b)
-    lines = contact_lines(lm, phi1, cap=1.2 * hint * rb1 + 2e-3)
-    T1, T2 = rotation_z(phi1), model.pair.gear_frame(phi1)
+    theta0 = float(first_contact(model, phi1, lm.teeth1))
+    lead = theta0 if p2.internal else 0.0        # external pairs are calibrated at the pitch point (theta0 ~ 0)
+    lines = [(k, P @ rotation_z(-lead)[:3, :3].T, N @ rotation_z(-lead)[:3, :3].T)
+             for k, P, N in contact_lines(lm, phi1, cap=1.2 * hint * rb1 + 2e-3, theta0=lead)]
+    T1, T2 = rotation_z(phi1 - lead), model.pair.gear_frame(phi1)
 
     def body_lines(T):
         Ti = np.linalg.inv(T)
@@ -127,6 +150,7 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     L1, L2 = body_lines(T1), body_lines(T2)
     t0 = time.perf_counter()
     side2 = "right" if model.gear_side > 0 else "left"
+    support2 = "rim" if p2.internal else "bore"
     m1 = build_full_gear(_spec(p1, model.r_bore1, model.web1, b, lm.teeth1, st, L1, "right"))
     m2 = build_full_gear(_spec(p2, model.r_bore2, model.web2, b, lm.teeth2, st, L2, side2))
     t_mesh = time.perf_counter() - t0
@@ -134,14 +158,19 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
                    if n in (f"flank_{j}_{side2}", f"tip_{j}", f"tip_{j}_left", f"tip_{j}_right"))
     f1, f2, pairs, loaded = dict(m1.facets), dict(m2.facets), [], []
     for i, (k, _, _) in enumerate(lines):
-        f1[f"band_{k}"] = facets_near_lines(m1, (f"flank_{k}_right",), [L1[i]], st.halo)
+        own = (f"flank_{k}_right",)
+        wheel_corner = p2.internal and np.hypot(*(0.5 * (L2[i].p0 + L2[i].p1))[:2]) < p2.r_tip + CORNER
+        if p2.internal:      # the satellite's tip edge (a corner contact) or its fillet below the form circle
+            own += (f"fillet_{k}_right",) if wheel_corner else (f"tip_{k}", f"tip_{k}_right")
+        f1[f"band_{k}"] = facets_near_lines(m1, own, [L1[i]], st.halo)
         f2[f"band_{k}"] = facets_near_lines(m2, master, [L2[i]], st.halo)
-        pairs.append(ContactPairSpec(f"P{i}", ("pinion", (f"band_{k}",)), ("gear", (f"band_{k}",))))
+        sides = [("pinion", (f"band_{k}",)), ("gear", (f"band_{k}",))]
+        pairs.append(ContactPairSpec(f"P{i}", *(sides[::-1] if wheel_corner else sides)))
         loaded.append(k)
     m1 = type(m1)(m1.nodes, m1.tets, f1, m1.spec_hash, m1.seconds)
     m2 = type(m2)(m2.nodes, m2.tets, f2, m2.spec_hash, m2.seconds)
-    delta = st.preload * hint
-    deck = CcxDeck(young=model.case.young, poisson=model.case.poisson, fixed=("gear", "bore"),
+    delta = lead + st.preload * hint
+    deck = CcxDeck(young=model.case.young, poisson=model.case.poisson, fixed=("gear", support2),
                    driven=("pinion", "bore"), moment=-torque, pairs=tuple(pairs), penalty=st.penalty,
                    stress_output=True)
     work = Path(workdir)
@@ -171,7 +200,6 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     wall_ccx = run_ccx(work / "job.inp", threads=st.threads)
     res = read_results(work / "job", ids["rot"], tuple(p.name for p in pairs))
     theta = delta - res.rotation
-    theta0 = float(first_contact(model, phi1, lm.teeth1))
     loads = {int(k): 0.0 for k in lm.teeth1}
     loads.update({k: float(np.linalg.norm(res.pair_force.get(p.name, np.zeros(3)))) for k, p in zip(loaded, pairs)})
     p_fit = _fitted_peak(m1, L1, res.contact_nodes, res.contact_pressure, b)

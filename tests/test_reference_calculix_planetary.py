@@ -1,0 +1,156 @@
+"""Issue 15's independent check: our planetary LTCA against a frozen whole-gear CalculiX reference, no ccx at test time.
+
+``tests/reference/eccentric_planetary_calculix.json`` was computed by ``ltca validate --reference calculix-whole
+--case cases/eccentric_planetary_satellite.toml --torque ... --positions ... --freeze FILE`` (the command, CalculiX
+version, date, mesh sizes, nodes and elements, deck hashes, wall times and the contact-band ladder are stored in
+it): both gears whole with every tooth (:mod:`fem.solids.full_gear`, the wheel internal), the wheel held at its
+outer diameter, the satellite bore on a rigid body turning about the satellite axis, penalty contact on every
+tooth that could close (:mod:`ltca.verify.planetary_whole`). The torque is chosen so that at least 5 pairs carry
+load (at the rated 264 N m our model loads 2-3). Bounds (issue 15): loaded TE 3 %, every pair's share 0.03. A
+check the frozen reference records outside its bound stays a strict xfail naming the numbers, not a looser bound.
+
+Mutation check (2026-11-23): our Young's modulus / 1.05 moves our TE to 56.36 um, +6.3 % off CalculiX, and the
+TE test fails; x 1.05 does not make it fail: our TE falls only 3.1 %, to 52.80 um (the unloaded gaps of the
+outer pairs do not scale), and ours sits +2.8 % above CalculiX, so it lands at -0.4 %.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+
+REFERENCE = Path(__file__).resolve().parent / "reference" / "eccentric_planetary_calculix.json"
+BOUNDS = {"te_rel": 0.03, "share_abs": 0.03}
+_OURS: dict = {}
+
+
+def _rec() -> dict:
+    return json.loads(REFERENCE.read_text())
+
+
+def _model():
+    """Our model of the reference's case at its torque and fidelity (built once)."""
+    if "lm" not in _OURS:
+        from ltca.planetary.case import load_planetary_case
+        from ltca.verify.planetary_whole import prepare_ours
+        rec = _rec()
+        case = load_planetary_case(ROOT / rec["case"])
+        _OURS["sm"], _OURS["lm"] = prepare_ours(case, [r["phi_deg"] for r in rec["rows"]], 1e3 * rec["torque_nm"],
+                                                rec["fidelity"])
+    return _OURS["sm"], _OURS["lm"]
+
+
+def _ours(phi_deg: float) -> dict:
+    if phi_deg not in _OURS:
+        from ltca.verify.planetary_whole import solve_ours
+        sm, lm = _model()
+        _OURS[phi_deg] = solve_ours(sm, lm, phi_deg, 1e3 * _rec()["torque_nm"])
+    return _OURS[phi_deg]
+
+
+def _share_diff(a: dict, b: dict) -> float:
+    return max(abs(a.get(k, 0.0) - b.get(k, 0.0)) for k in set(a) | set(b))
+
+
+def test_internal_full_gear_is_the_ring_held_at_its_outer_diameter():
+    """The wheel of the CalculiX model: every internal tooth, the outer cylinder (``rim``) at the housing radius."""
+    import numpy as np
+    from fem.solids.full_gear import FullGearSpec, build_full_gear
+    from ltca.planetary.case import load_planetary_case
+    from ltca.planetary.model import build_satellite_model
+    case = load_planetary_case(ROOT / "cases" / "eccentric_planetary_satellite.toml")
+    w = build_satellite_model(case).pair.gear
+    m = build_full_gear(FullGearSpec(w.xy, w.kind, w.side, w.z, 95.0, 20.0, loaded_teeth=(0,), h_flank=2.0,
+                                     h_tooth=4.0, h_body=8.0, ds=0.8, internal=True))
+    assert {int(n.split("_")[1]) for n in m.facets if n.startswith("flank_")} == set(range(-25, 26))
+    rim = m.nodes[np.unique(m.facets["rim"][:, :3])]
+    assert "bore" not in m.facets and np.allclose(np.hypot(rim[:, 0], rim[:, 1]), 95.0, atol=1e-6)
+    r = np.hypot(m.nodes[:, 0], m.nodes[:, 1])
+    assert r.min() == pytest.approx(w.r_tip, abs=0.01) and r.max() == pytest.approx(95.0, abs=1e-6)
+    with pytest.raises(ValueError, match="r_bore"):
+        FullGearSpec(w.xy, w.kind, w.side, w.z, 60.0, 20.0, internal=True)
+
+
+@pytest.mark.parametrize("args,field", [(["--torque", "3000", "--positions", "5"], "--positions"),
+                                        (["--positions", "-1.8"], "--torque"),
+                                        (["--torque", "-1", "--positions", "-1.8"], "--torque"),
+                                        (["--torque", "3000", "--band", "10"], "--band")])
+def test_planetary_check_bad_input_exits_2_naming_the_field(args, field, tmp_path, capsys):
+    from ltca.cli import main
+    code = main(["validate", "--reference", "calculix-whole", "--case",
+                 str(ROOT / "cases" / "eccentric_planetary_satellite.toml"), "--out", str(tmp_path), "--quiet", *args])
+    assert code == 2 and field in capsys.readouterr().err
+
+
+def test_reference_records_its_provenance():
+    rec = _rec()
+    assert "Version" in rec["calculix_version"] and rec["date"]
+    assert rec["command"].startswith("ltca validate --reference calculix-whole --case cases/eccentric_planetary")
+    assert rec["bounds"] == BOUNDS
+    assert len(rec["refinement"]) >= 2, "a frozen reference needs its contact-band refinement"
+    for c in [r["ccx"] for r in rec["rows"]] + rec["refinement"]:
+        assert len(c["deck_sha256"]) == 64 and c["nodes"] > 0 and c["elements"] > 0 and c["h_contact_um"] > 0
+        assert c["ccx_wall_s"] > 0 and abs(sum(c["share"].values()) - 1) < 1e-9
+
+
+def test_calculix_has_at_least_five_pairs_in_contact():
+    """The issue's demand on the check itself: CalculiX at one position with >= 5 pairs carrying load."""
+    assert max(r["ccx"]["loaded_pairs"] for r in _rec()["rows"]) >= 5
+
+
+def test_ours_has_at_least_five_loaded_pairs():
+    """At the reference's torque and position our LTCA loads at least 5 pairs (share >= 0.1 % each)."""
+    rec = _rec()
+    assert max(_ours(r["phi_deg"])["loaded_pairs"] for r in rec["rows"]) >= 5
+
+
+def _known_out() -> dict:
+    out = {}
+    for i, r in enumerate(_rec()["rows"] if REFERENCE.exists() else []):
+        o, c = r["ours"], r["ccx"]
+        if abs(o["te_um"] / c["te_um"] - 1) > BOUNDS["te_rel"]:
+            out[(i, "te")] = f"TE ours {o['te_um']:.2f} vs CalculiX {c['te_um']:.2f} um"
+        if _share_diff(o["share"], c["share"]) > BOUNDS["share_abs"]:
+            nz = lambda d: {k: round(v, 3) for k, v in d.items() if v >= 5e-4}      # noqa: E731
+            out[(i, "share")] = f"share ours {nz(o['share'])} vs CalculiX {nz(c['share'])}"
+    return out
+
+
+def _cases():
+    known = _known_out()
+    rows = _rec()["rows"] if REFERENCE.exists() else []
+    return [pytest.param(i, q, marks=[pytest.mark.xfail(strict=True, reason=known[(i, q)])] if (i, q) in known else [],
+                         id=f"{r['phi_deg']:+.2f}-{q}") for i, r in enumerate(rows) for q in ("te", "share")]
+
+
+@pytest.mark.parametrize("index,quantity", _cases())
+def test_ours_against_frozen_calculix(index, quantity):
+    """Loaded TE within 3 % and every pair's load share within 0.03 of the frozen CalculiX values."""
+    ref = _rec()["rows"][index]
+    o, c = _ours(ref["phi_deg"]), ref["ccx"]
+    if quantity == "te":
+        assert o["te_um"] == pytest.approx(c["te_um"], rel=BOUNDS["te_rel"])
+    else:
+        assert _share_diff(o["share"], c["share"]) <= BOUNDS["share_abs"]
+
+
+@pytest.mark.slow
+@pytest.mark.calculix
+def test_regenerated_reference_matches_stored(tmp_path):
+    """Rerun CalculiX at the coarsest rung of the stored ladder: the same TE (0.5 %) and shares (0.005)."""
+    import shutil
+    if shutil.which("ccx") is None:
+        pytest.skip("CalculiX (ccx) missing")
+    from ltca.verify.planetary_whole import planetary_settings
+    from ltca.verify.whole_gear import solve_whole
+    rec = _rec()
+    first = rec["refinement"][0]
+    sm, lm = _model()
+    st = planetary_settings(lm.b_nom, sm.pair.pinion.m_n, first["h_contact_um"])
+    c = solve_whole(lm, rec["rows"][0]["phi_deg"], 1e3 * rec["torque_nm"], st, tmp_path, say=lambda m: None)
+    te_um = 1e3 * sm.pair.pinion.r_base * (c.info["theta"] - c.info["theta0"])
+    assert te_um == pytest.approx(first["te_um"], rel=0.005)
+    assert _share_diff({str(k): v for k, v in c.share(sorted(c.pair_load)).items()}, first["share"]) < 0.005
