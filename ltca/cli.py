@@ -91,6 +91,8 @@ def _cmd_validate(a: argparse.Namespace) -> int:
         return run_bevel_validate(a.case, a.out, progress=not a.quiet)
     a.case = a.case or "cases/fzg_c14.toml"
     if a.reference == "calculix" and _is_bevel(a.case):
+        if a.torque is not None and not 0 < a.torque <= 1e5:
+            raise CaseError("--torque", a.torque, "one pinion torque in (0, 1e5] N m")
         from fem.calculix.run import CcxNotFound
         from .verify.bevel_calculix import run_bevel_validation
         from .verify.whole_check import command_line
@@ -199,17 +201,6 @@ def _positive_int(text: str) -> int:
         raise argparse.ArgumentTypeError(f"'{text}' is not an integer") from None
     if v < 1:
         raise argparse.ArgumentTypeError(f"{v}: must be >= 1")
-    return v
-
-
-def _positive_torque(text: str) -> float:
-    """A torque on the command line, N m: a number in (0, 1e5]."""
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
-    if not 0 < v <= 1e5:
-        raise argparse.ArgumentTypeError(f"{v}: must be in (0, 100000] N m")
     return v
 
 
@@ -347,7 +338,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "half-width, other than the band ladder's first position), all or none")
     v.add_argument("--fidelity", choices=["coarse", "default", "fine"], default=None,
                    help="our fidelity for --reference calculix-whole (default: default; a [satellite] case: its own)")
-    v.add_argument("--torque", type=_positive_torque, default=None, metavar="NM",
+    v.add_argument("--torque", type=float, default=None, metavar="NM",
                    help="calculix on a [bevel] case: the pinion torque, N m (default: the case's middle torque); "
                         "calculix-whole on a [satellite] case: the satellite torque, N m (required there)")
     v.add_argument("--cache", default=None, help="calculix-whole on a [satellite] case: our mesh cache directory")
