@@ -43,7 +43,7 @@ class BevelComplianceSpec:
     depth: float
     young: float
     poisson: float
-    rim_depth: float
+    rim_depth: float = 10.0
     divisions: tuple[int, int, int, int, int, int] = (16, 8, 6, 4, 4, 24)
     root_points: tuple[int, int] = (4, 7)
     support: tuple[str, float] | None = None

@@ -15,7 +15,7 @@ from fem.solids.bevel_body import BevelBodySpec, build_bevel_body
 from ltca.bevel.analysis import build_pair
 from ltca.bevel.case import load_bevel_case
 from ltca.bevel.loaded_model import member_flanks
-from ltca.bevel.model import BevelMounting, root_point
+from ltca.bevel.model import BevelMounting
 from ltca.cli import main
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.toml"
@@ -45,7 +45,7 @@ def test_case_mounting_is_read_and_defaults_follow_the_blank(pair):
     # defaults: 0.45 x the toe's root diameter (9.0 mm here), 1.2 whole depths behind the heel root along the back
     # cone (48.07 mm here): the shipped values are the defaults of this pair, to rounding
     d = BevelMounting().supports(pair.blank)
-    assert d["pinion"][1] == pytest.approx(0.45 * root_point(pair.blank, "pinion", "toe")[1], rel=1e-12)
+    assert d["pinion"][1] == pytest.approx(0.45 * pair.blank.root_point("pinion", "toe")[1], rel=1e-12)
     assert d["pinion"][1] == pytest.approx(9.0, abs=0.01) and d["gear"][1] == pytest.approx(48.07, abs=0.01)
 
 
@@ -63,7 +63,7 @@ def test_body_support_lies_on_the_mounting(pair, member, support):
     allc = np.hypot(V[:, 0], V[:, 1]) if kind == "seat" else V[:, 2]
     assert (allc >= value - 1e-9).all() if kind == "seat" else (allc <= value + 1e-9).all()
     # a deeper blank has more rows: the element volume stays positive and the blank reaches the support
-    toe = root_point(pair.blank, member, "toe")
+    toe = pair.blank.root_point(member, "toe")
     assert (toe[1] - value if kind == "seat" else value - toe[0]) > 0
 
 

@@ -144,6 +144,17 @@ class BevelBlank:
             raise ValueError(f"which = {which!r}: allowed 'pinion' or 'gear'")
         return self.pinion if which == "pinion" else self.gear
 
+    def root_point(self, which: str, end: str) -> np.ndarray:
+        """(Z, rho) of ``which``'s root cone at its ``"toe"`` or ``"heel"``, member body frame (pitch apex at the
+        origin, z along the axis), mm."""
+        if end not in ("toe", "heel"):
+            raise ValueError(f"end = {end!r}: allowed 'toe' or 'heel'")
+        mb, A0 = self.member(which), self.outer_cone_distance
+        L = self.inner_cone_distance if end == "toe" else A0
+        g = mb.pitch_angle
+        Rn = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle))
+        return np.array([L * np.cos(g) - Rn * np.sin(g), L * np.sin(g) + Rn * np.cos(g)])
+
 
 def design_blank(data: BevelBasicData) -> BevelBlank:
     """Pitch, face and root cones, depths and diameters of a Gleason spiral bevel pair.

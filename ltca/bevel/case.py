@@ -14,8 +14,8 @@ from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
-from .model import BevelMounting, root_point
 from ..validation import DesignError, Int, List, Num, Str, Table, check_kind, check_table
+from .model import BevelMounting
 
 __all__ = ["load_bevel_case", "bevel_case_from_data"]
 
@@ -54,7 +54,7 @@ _MATERIAL = Table({"youngs_modulus_mpa": Num(1e3, 1e6, "MPa", default=206000.0),
 _MOUNTING = Table({
     "pinion_seat_diameter_mm": Num(1, 5000, "mm", default=None,
                                    note="pinion shaft seat, held as on a rigid shaft; default 0.45 x the toe's "
-                                        "root diameter; below the toe's root diameter less one whole depth"),
+                                        "root diameter; below the toe's root diameter less two whole depths"),
     "gear_mounting_distance_mm": Num(1, 1e4, "mm", default=None,
                                      note="pitch apex to the gear's back mounting face, held rigidly; default "
                                           "1.2 whole depths behind the heel root; behind the heel root"),
@@ -115,12 +115,12 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
 def _mounting(m: dict, blank, f: str | None) -> BevelMounting:
     """``[mounting]``: the shaft seat inside the pinion's toe, the gear's back face behind its heel."""
     out = BevelMounting(m.get("pinion_seat_diameter_mm"), m.get("gear_mounting_distance_mm"))
-    d_toe = 2 * root_point(blank, "pinion", "toe")[1]
+    d_toe = 2 * blank.root_point("pinion", "toe")[1]
     if out.pinion_seat_diameter is not None and out.pinion_seat_diameter > d_toe - 2 * blank.whole_depth:
         raise CaseError("mounting.pinion_seat_diameter_mm", out.pinion_seat_diameter,
                         f"below {d_toe - 2 * blank.whole_depth:.2f} mm (the pinion's root diameter at the toe "
                         f"{d_toe:.2f} mm less two whole depths: the blank must carry the teeth)", f)
-    z_heel = root_point(blank, "gear", "heel")[0]
+    z_heel = blank.root_point("gear", "heel")[0]
     lo, hi = z_heel + 0.3 * blank.whole_depth, z_heel + 20 * blank.whole_depth
     if out.gear_mounting_distance is not None and not lo <= out.gear_mounting_distance <= hi:
         raise CaseError("mounting.gear_mounting_distance_mm", out.gear_mounting_distance,

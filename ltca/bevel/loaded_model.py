@@ -52,9 +52,8 @@ def _member(pair: BevelPair, member: str, side: str, fid: BevelFidelity, E: floa
             say):
     mb = pair.blank.member(member)
     fl, off, shift = member_flanks(pair, member)
-    rim = 1.2 * (mb.addendum + mb.dedendum)                 # unused: the blank runs down to ``support``
-    spec = BevelComplianceSpec(side, LOADED, MESHED, fid.grid, fid.depth if fid.near_field else 0.0, E, nu, rim,
-                               fid.divisions, support=support)
+    spec = BevelComplianceSpec(side, LOADED, MESHED, fid.grid, fid.depth if fid.near_field else 0.0, E, nu,
+                               divisions=fid.divisions, support=support)
     return bevel_compliance(fl["concave"], fl["convex"], mb.z, off, shift, spec, cache_dir, say), off
 
 

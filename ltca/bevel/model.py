@@ -63,7 +63,7 @@ class BevelMounting:
         """``{"pinion": ("seat", rho), "gear": ("face", Z)}`` in each member's body frame (mm), for
         :class:`fem.solids.bevel_body.BevelBodySpec`; ``blank`` is the pair's
         :class:`geometry.bevel.blank.BevelBlank`."""
-        toe1, heel2 = root_point(blank, "pinion", "toe"), root_point(blank, "gear", "heel")
+        toe1, heel2 = blank.root_point("pinion", "toe"), blank.root_point("gear", "heel")
         seat = 0.45 * toe1[1] if self.pinion_seat_diameter is None else 0.5 * self.pinion_seat_diameter
         if self.gear_mounting_distance is None:
             g = blank.member("gear").pitch_angle
@@ -71,15 +71,6 @@ class BevelMounting:
         else:
             face = self.gear_mounting_distance
         return {"pinion": ("seat", float(seat)), "gear": ("face", float(face))}
-
-
-def root_point(blank, member: str, end: str) -> np.ndarray:
-    """(Z, rho) of the root cone at the toe or heel of ``member``, body frame, mm."""
-    mb = blank.member(member)
-    L = blank.inner_cone_distance if end == "toe" else blank.outer_cone_distance
-    g = mb.pitch_angle
-    Rn = -(mb.dedendum - (blank.outer_cone_distance - L) * np.tan(mb.dedendum_angle))
-    return np.array([L * np.cos(g) - Rn * np.sin(g), L * np.sin(g) + Rn * np.cos(g)])
 
 
 @dataclass

@@ -93,11 +93,8 @@ def _frame(R: np.ndarray, o=np.zeros(3)) -> np.ndarray:
 def _outline(lm: BevelLoadedModel, member: str, st: BevelCcxSettings) -> tuple[np.ndarray, dict]:
     """Blank polygon (Z, rho), edge 0 the root cone toe -> heel, and the support edge."""
     bl = lm.pair.blank
-    mb, A0, Ai = bl.member(member), bl.outer_cone_distance, bl.inner_cone_distance
-    g = mb.pitch_angle
-    root = lambda L: -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle))       # noqa: E731
-    ax = lambda L, Rn: np.array([L * np.cos(g) - Rn * np.sin(g), L * np.sin(g) + Rn * np.cos(g)])  # noqa: E731
-    A, B = ax(Ai, root(Ai)), ax(A0, root(A0))
+    g = bl.member(member).pitch_angle
+    A, B = bl.root_point(member, "toe"), bl.root_point(member, "heel")
     d = np.array([np.sin(g), -np.cos(g)])                   # into the material along the front/back cones
     if member == "pinion":                                  # down to the shaft seat rho = r_bore1
         return np.array([A, B, B + d * (B[1] - st.r_bore1) / np.cos(g), A + d * (A[1] - st.r_bore1) / np.cos(g)]), \
