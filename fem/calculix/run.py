@@ -107,25 +107,31 @@ def _dat_blocks(text: str) -> list[tuple[str, list[list[float]]]]:
     return blocks
 
 
-def _frd_contact(frd: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Slave node ids, opening and pressure of the last CONTACT block of a .frd file."""
-    ids, vals = [], []
+def _frd_block(frd: str | os.PathLike, name: str) -> list[str]:
+    """The node lines (`` -1`` records) of the last result block ``name`` (``CONTACT``, ``STRESS``, ...) of a
+    ``.frd`` file."""
+    rows: list[str] = []
     current = None
     with open(frd, errors="replace") as fh:
         for line in fh:
             if line.startswith(" -4"):
                 current = line.split()[1]
-                if current == "CONTACT":
-                    ids, vals = [], []
-            elif current == "CONTACT" and line.startswith(" -1"):
-                m = re.match(r"\s*(\d+)", line[3:13])
-                ids.append(int(m.group(1)))
-                vals.append([float(v) for v in _FLOAT.findall(line[13:])])
+                if current == name:
+                    rows = []
+            elif current == name and line.startswith(" -1"):
+                rows.append(line)
             elif line.startswith(" -3"):
-                current = None if current != "CONTACT" else "done"
-    if not ids:
+                current = None
+    return rows
+
+
+def _frd_contact(frd: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Slave node ids, opening and pressure of the last CONTACT block of a .frd file."""
+    rows = _frd_block(frd, "CONTACT")
+    if not rows:
         return np.zeros(0, int), np.zeros(0), np.zeros(0)
-    v = np.array(vals)
+    ids = [int(re.match(r"\s*(\d+)", line[3:13]).group(1)) for line in rows]
+    v = np.array([[float(x) for x in _FLOAT.findall(line[13:])] for line in rows])
     return np.array(ids), v[:, 0], v[:, 3]
 
 
@@ -135,22 +141,11 @@ def read_nodal_stress(frd: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
     CalculiX writes the components SXX, SYY, SZZ, SXY, SYZ, SZX (nodal values: extrapolated from the
     integration points, averaged over the elements at the node); they are returned in the Voigt order
     xx, yy, zz, yz, xz, xy of :func:`fem.compliance.principal_max`. Empty arrays when there is no block."""
-    ids, vals, current = [], [], None
-    with open(frd, errors="replace") as fh:
-        for line in fh:
-            if line.startswith(" -4"):
-                current = line.split()[1]
-                if current == "STRESS":
-                    ids, vals = [], []
-            elif current == "STRESS" and line.startswith(" -1"):
-                ids.append(int(line[3:13]))
-                vals.append([float(line[13 + 12 * i:25 + 12 * i]) for i in range(6)])
-            elif line.startswith(" -3"):
-                current = None
-    if not ids:
+    rows = _frd_block(frd, "STRESS")
+    if not rows:
         return np.zeros(0, int), np.zeros((0, 6))
-    v = np.array(vals)
-    return np.array(ids), v[:, [0, 1, 2, 4, 5, 3]]
+    v = np.array([[float(line[13 + 12 * i:25 + 12 * i]) for i in range(6)] for line in rows])
+    return np.array([int(line[3:13]) for line in rows]), v[:, [0, 1, 2, 4, 5, 3]]
 
 
 def read_results(job: str | os.PathLike, rot_node: int, pairs: tuple[str, ...]) -> CcxResult:
