@@ -60,12 +60,17 @@ class HeadCutter:
         ``"outside"`` (generates the concave flank) or ``"inside"`` (convex flank).
     edge_radius : float
         r_f, mm, >= 0; generates the fillet.
+    part : str
+        ``"whole"`` (the blade), or ``"straight"``: its straight profile continued past the tangency with the
+        edge radius, for every u (the whole blade is that line for u >= 0). The straight part generates a smooth
+        branch of the flank, which :class:`geometry.bevel.surface_table.SurfaceTable` tabulates.
     """
 
     point_radius: float
     blade_angle: float
     blade: str = "outside"
     edge_radius: float = 0.0
+    part: str = "whole"
 
     def __post_init__(self) -> None:
         if self.blade not in ("outside", "inside"):
@@ -74,6 +79,8 @@ class HeadCutter:
             raise ValueError(f"point_radius = {self.point_radius!r} is outside the allowed range (0, inf) mm")
         if not (0.0 <= self.blade_angle <= np.deg2rad(45.0)):
             raise ValueError(f"blade_angle = {self.blade_angle!r} is outside the allowed range [0, 0.785] rad")
+        if self.part not in ("whole", "straight"):
+            raise ValueError(f"part = {self.part!r}: allowed 'whole' or 'straight'")
         if not (0.0 <= self.edge_radius < 0.5 * self.point_radius):
             raise ValueError(f"edge_radius = {self.edge_radius!r} is outside the allowed range "
                              f"[0, {0.5 * self.point_radius}) mm")
@@ -108,7 +115,7 @@ class HeadCutter:
         # straight part
         s = self.s0 + u
         rho_s, z_s = self.point_radius + sg * s * sa, -s * ca
-        if rf == 0.0:
+        if rf == 0.0 or self.part == "straight":
             one = np.ones_like(u)
             return CutterProfile(rho_s, z_s, -sg * ca * one, -sa * one, sg * sa * one, -ca * one)
         # edge arc: phi = alpha - u / r_f, point = centre - r_f n (n = work normal)

@@ -22,7 +22,7 @@ Litvin & Fuentes, *Gear Geometry and Applied Theory*, 2nd ed. 2004, sec. 9.4 (TC
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
@@ -30,6 +30,7 @@ from scipy.interpolate import RegularGridInterpolator
 from .blank import BevelBlank
 from .generation import generate_flank, solve_axial_points, surface_state
 from .machine import FlankCut
+from .surface_table import SurfaceTable
 from .tca import RAD_PER_ARCSEC, Assembly, BevelPair, mesh_frames, to_pitch_coords
 
 __all__ = ["SeparationResult", "separation_tca", "EDGES"]
@@ -76,6 +77,7 @@ class _Member:
         self.lo = np.array([0.0, self.Ai])
         self.hi = np.array([1.0, self.A0])
         self.tol = 1e-11                       # Newton tolerance of surface points, mm
+        self.table = None                      # a SurfaceTable serving surface() (use_table), else exact
 
     def _cones(self, L):
         mb = self.mb
@@ -98,7 +100,40 @@ class _Member:
     def inside(self, t, L, tol=1e-9):
         return (t >= -tol) & (t <= 1 + tol) & (L >= self.Ai - tol) & (L <= self.A0 + tol)
 
+    def use_table(self, tol: float = 1e-7) -> None:
+        """Serve :meth:`surface` from a :class:`~geometry.bevel.surface_table.SurfaceTable` of this flank (built
+        once per flank, remembered with it): within ``tol`` mm of the exact surface, exact where it is not."""
+        key = ("table", id(self.fc), self.name, self.A0, self.Ai, float(self.off), self.tol, float(tol))
+        hit = _FLANKS.get(key)
+        if hit is None:
+            if len(_FLANKS) >= 16:
+                _FLANKS.pop(next(iter(_FLANKS)))
+            dL = 0.05 * (self.A0 - self.Ai)
+            hit = _FLANKS[key] = (self.fc, SurfaceTable(self.exact_surface, self.axial, (-0.25, 1.25),
+                                                        (self.Ai - dL, self.A0 + dL), tol=tol,
+                                                        branches=[self._straight_branch]))
+        self.table = hit[1]
+
+    def _straight_branch(self, t, L):
+        """The surface the blade's straight part generates, continued past its tangency with the edge radius (a
+        smooth branch of the flank, :class:`~geometry.bevel.surface_table.SurfaceTable`), at (t, L): points,
+        normals, solved flags and the blade parameter u (mm; the flank is this branch where u >= 0)."""
+        fc = replace(self.fc, cutter=replace(self.fc.cutter, part="straight"))
+        Z, rho = self.axial(t, L)
+        x, ok = solve_axial_points(fc, Z, rho, self._guess(np.stack([np.clip(t, -0.2, 1.2), L], -1)), tol=self.tol)
+        st = surface_state(fc, x[:, 0], x[:, 1], x[:, 2])
+        return st.r_w, st.n_w, ok, x[:, 0]
+
     def surface(self, t, L):
+        """Surface point, normal (body frame) and convergence flag at (t, L), any shape: exact, or from the
+        flank's table after :meth:`use_table`."""
+        if self.table is None:
+            return self.exact_surface(t, L)
+        t, L = np.broadcast_arrays(np.asarray(t, float), np.asarray(L, float))
+        r, n, ok = self.table.surface(t.ravel(), L.ravel())
+        return r.reshape(t.shape + (3,)), n.reshape(t.shape + (3,)), ok.reshape(t.shape)
+
+    def exact_surface(self, t, L):
         """Exact surface point, normal (body frame) and convergence flag at (t, L), any shape."""
         t, L = np.broadcast_arrays(np.asarray(t, float), np.asarray(L, float))
         shp = t.shape
