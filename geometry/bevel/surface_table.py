@@ -15,10 +15,12 @@ continued past its tangency with the edge radius -- each with a validity field w
 parameter u, mm, >= 0 on the straight part): a branch serves a point only where its w > ``margin``, i.e. where
 the real flank is that branch; everything else (the fillet, the edge of the branch) is solved exactly, and
 points far outside the box are not solved at all. (The edge circle's branch, continued, folds between roots of
-the equation of meshing a few tenths of a millimetre from where it is the flank; it is left exact.) Every cell is also checked at build time: the
-spline against the smooth branch at the cell's centre; a cell off by more than ``tol`` (position, mm) or
-``10 tol`` (normal), or with an unsolved node, is marked, with its neighbours, and left to the exact solve
-(measured in ``tests/test_bevel_surface_table.py`` at random points: the largest error, not the centre's).
+the equation of meshing a few tenths of a millimetre from where it is the flank; it is left exact.)
+
+Every cell is also checked at build time: the spline against the smooth branch at the cell's centre; a cell off by
+more than ``tol`` (position, mm) or ``10 tol`` (normal), or with an unsolved node, is marked, with its neighbours,
+and left to the exact solve (measured in ``tests/test_bevel_surface_table.py`` at random points: the largest error,
+not the centre's).
 """
 from __future__ import annotations
 
