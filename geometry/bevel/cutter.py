@@ -79,7 +79,7 @@ class HeadCutter:
             raise ValueError(f"point_radius = {self.point_radius!r} is outside the allowed range (0, inf) mm")
         if not (0.0 <= self.blade_angle <= np.deg2rad(45.0)):
             raise ValueError(f"blade_angle = {self.blade_angle!r} is outside the allowed range [0, 0.785] rad")
-        if self.part not in ("whole", "straight"):
+        if self.part not in ("whole", "straight", "arc"):
             raise ValueError(f"part = {self.part!r}: allowed 'whole' or 'straight'")
         if not (0.0 <= self.edge_radius < 0.5 * self.point_radius):
             raise ValueError(f"edge_radius = {self.edge_radius!r} is outside the allowed range "
@@ -120,11 +120,13 @@ class HeadCutter:
             return CutterProfile(rho_s, z_s, -sg * ca * one, -sa * one, sg * sa * one, -ca * one)
         # edge arc: phi = alpha - u / r_f, point = centre - r_f n (n = work normal)
         rho_c = self.point_radius - sg * rf * (1.0 - sa) / ca
-        phi = np.clip(a - u / rf, a, 0.5 * np.pi)
+        phi = a - u / rf if self.part == "arc" else np.clip(a - u / rf, a, 0.5 * np.pi)
         n_rho_a, n_z_a = -sg * np.cos(phi), -np.sin(phi)
         rho_a, z_a = rho_c - rf * n_rho_a, -rf - rf * n_z_a
         # tangent d/du of the arc = -(1/rf) d/dphi (centre - rf n) = -(dn/dphi) = (-sg sin phi, cos phi)*(-1)
         d_rho_a, d_z_a = sg * np.sin(phi), -np.cos(phi)
+        if self.part == "arc":
+            return CutterProfile(rho_a, z_a, n_rho_a, n_z_a, d_rho_a, d_z_a)
         # beyond the tip: continue along the tip plane (normal -e_z)
         beyond = u < self.u_min
         rho_a = np.where(beyond, rho_c + sg * (u - self.u_min), rho_a)

@@ -111,18 +111,30 @@ class _Member:
             dL = 0.05 * (self.A0 - self.Ai)
             hit = _FLANKS[key] = (self.fc, SurfaceTable(self.exact_surface, self.axial, (-0.25, 1.25),
                                                         (self.Ai - dL, self.A0 + dL), tol=tol,
-                                                        branches=[self._straight_branch]))
+                                                        branches=self._branches()))
         self.table = hit[1]
 
-    def _straight_branch(self, t, L):
-        """The surface the blade's straight part generates, continued past its tangency with the edge radius (a
-        smooth branch of the flank, :class:`~geometry.bevel.surface_table.SurfaceTable`), at (t, L): points,
-        normals, solved flags and the blade parameter u (mm; the flank is this branch where u >= 0)."""
-        fc = replace(self.fc, cutter=replace(self.fc.cutter, part="straight"))
-        Z, rho = self.axial(t, L)
-        x, ok = solve_axial_points(fc, Z, rho, self._guess(np.stack([np.clip(t, -0.2, 1.2), L], -1)), tol=self.tol)
-        st = surface_state(fc, x[:, 0], x[:, 1], x[:, 2])
-        return st.r_w, st.n_w, ok, x[:, 0]
+    def _branches(self):
+        """The flank's smooth branches (:class:`~geometry.bevel.surface_table.SurfaceTable`): the surfaces the
+        blade's straight part and its edge circle generate, each continued past their tangency; their validity
+        fields w (mm) are the blade parameter u's distance inside the part (straight: u >= 0; arc:
+        ``u_min`` <= u < 0)."""
+        cut = self.fc.cutter
+        parts = [("straight", lambda u: u)]
+        if cut.edge_radius > 0:
+            parts.append(("arc", lambda u: np.minimum(-u, u - cut.u_min)))
+
+        def branch(part, w):
+            fc = replace(self.fc, cutter=replace(cut, part=part))
+
+            def smooth(t, L):
+                Z, rho = self.axial(t, L)
+                x, ok = solve_axial_points(fc, Z, rho, self._guess(np.stack([np.clip(t, -0.2, 1.2), L], -1)),
+                                           tol=self.tol)
+                st = surface_state(fc, x[:, 0], x[:, 1], x[:, 2])
+                return st.r_w, st.n_w, ok, w(x[:, 0])
+            return smooth
+        return [branch(*p) for p in parts]
 
     def surface(self, t, L):
         """Surface point, normal (body frame) and convergence flag at (t, L), any shape: exact, or from the

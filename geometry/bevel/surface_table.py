@@ -38,37 +38,26 @@ Smooth = Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray, np.nda
 class _Branch:
     """Bicubic splines of one smooth branch over the rows of the box where it solves, cells checked."""
 
-    def __init__(self, smooth: Smooth, axial: Callable, t: np.ndarray, L: np.ndarray, tol: float):
+    def __init__(self, smooth: Smooth, axial: Callable, t: np.ndarray, L: np.ndarray, tol: float, reach: float):
         self._axial = axial
-        T, LL = np.meshgrid(t, L, indexing="ij")
-        r, n, ok, w = smooth(T.ravel(), LL.ravel())
-        ok = ok.reshape(T.shape) & np.isfinite(w.reshape(T.shape))
-        rows = ok.all(1)
-        # only the rows where the branch is the flank somewhere, and three on each side (a branch continued far
-        # from where it is the flank may fold or jump between roots of the equation of meshing)
-        live = np.flatnonzero((w.reshape(T.shape) > 0).any(1))
-        if live.size:
-            rows[:max(live[0] - 3, 0)] = False
-            rows[live[-1] + 4:] = False
-        # the longest run of rows that all solve
-        best, i0, i1, k = (0, 0, 0), 0, 0, 0
-        for k, good in enumerate(np.append(rows, False)):
-            if not good:
-                if k - i0 > best[0]:
-                    best = (k - i0, i0, k)
-                i0 = k + 1
-        _, i0, i1 = best
-        self.usable = i1 - i0 >= 8
+        # the rows of the box where the branch is tabulated, then the same number of rows over just those rows (a
+        # fillet branch spans a tenth of the depth and is curved on the edge radius)
+        found = self._rows(smooth, t, L, reach)
+        self.usable = found is not None
         if not self.usable:
             return
-        self.t, self.L = t[i0:i1], L
-        r = r.reshape(T.shape + (3,))[i0:i1]
-        n = n.reshape(T.shape + (3,))[i0:i1]
+        t = np.linspace(found[0][0], found[0][-1], len(t))
+        found = self._rows(smooth, t, L, reach)
+        self.usable = found is not None
+        if not self.usable:
+            return
+        t, r, n, w = found
+        self.t, self.L = t, L
         a = np.arctan2(r[..., 1], r[..., 0])
         self._a0 = float(np.median(a))
         self._sa = RectBivariateSpline(self.t, L, self._a0 + (a - self._a0 + np.pi) % (2 * np.pi) - np.pi)
         self._sn = [RectBivariateSpline(self.t, L, n[..., k]) for k in range(3)]
-        self._sw = RectBivariateSpline(self.t, L, w.reshape(T.shape)[i0:i1], kx=1, ky=1)
+        self._sw = RectBivariateSpline(self.t, L, w, kx=1, ky=1)
         # every cell checked at its centre against the branch; marked cells (and their neighbours) are left to
         # the exact solve
         tc, Lc = 0.5 * (self.t[1:] + self.t[:-1]), 0.5 * (L[1:] + L[:-1])
@@ -85,6 +74,26 @@ class _Branch:
         grown[:, :-1] |= grown[:, 1:].copy()
         self.bad = grown
         self.centre_error = float(np.max(err[~bad.ravel()], initial=0.0))
+
+    @staticmethod
+    def _rows(smooth: Smooth, t: np.ndarray, L: np.ndarray, reach: float):
+        """The longest run of node rows where every node solves and lies within ``reach`` of where the branch is
+        the flank (a branch continued far from there may fold, or jump between roots of the equation of
+        meshing): (t, points, normals, w) of those rows, or None for fewer than 8."""
+        T, LL = np.meshgrid(t, L, indexing="ij")
+        r, n, ok, w = smooth(T.ravel(), LL.ravel())
+        w = w.reshape(T.shape)
+        rows = np.append((ok.reshape(T.shape) & (w > -reach)).all(1), False)
+        best, i0 = (0, 0, 0), 0
+        for k, good in enumerate(rows):
+            if not good:
+                if k - i0 > best[0]:
+                    best = (k - i0, i0, k)
+                i0 = k + 1
+        n_rows, i0, i1 = best
+        if n_rows < 8:
+            return None
+        return t[i0:i1], r.reshape(T.shape + (3,))[i0:i1], n.reshape(T.shape + (3,))[i0:i1], w[i0:i1]
 
     def spline(self, t: np.ndarray, L: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         Z, rho = self._axial(t, L)
@@ -124,11 +133,13 @@ class SurfaceTable:
         this branch where w > 0). Default: ``exact`` with w = 1 (a flank smooth everywhere).
     margin : float
         A branch serves where its interpolated w exceeds this (the units of w).
+    reach : float
+        A branch is tabulated over the rows of nodes whose w all exceed ``-reach``.
     """
 
     def __init__(self, exact: Exact, axial: Callable, t_box: tuple[float, float], L_box: tuple[float, float],
                  shape: tuple[int, int] = (121, 41), tol: float = 1e-7, branches: Sequence[Smooth] = (),
-                 margin: float = 1e-3):
+                 margin: float = 1e-3, reach: float = 0.5):
         nt, nl = shape
         if min(nt, nl) < 8:
             raise ValueError(f"shape = {shape!r}: at least 8 nodes in t and in L")
@@ -136,7 +147,7 @@ class SurfaceTable:
         self.box = (*t_box, *L_box)
         t, L = np.linspace(*t_box, nt), np.linspace(*L_box, nl)
         branches = branches or [lambda t, L: (*exact(t, L), np.ones(np.shape(t)))]
-        self.branches = [_Branch(b, axial, t, L, self.tol) for b in branches]
+        self.branches = [_Branch(b, axial, t, L, self.tol, reach) for b in branches]
 
     def served(self, t: np.ndarray, L: np.ndarray) -> np.ndarray:
         """(n,) int: the branch that answers each point, -1 where none does (solved exactly)."""
