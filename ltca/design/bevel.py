@@ -19,6 +19,7 @@ from __future__ import annotations
 import copy
 import itertools
 import math
+import pickle
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -43,6 +44,12 @@ from .problem import Measures
 from .schema import DesignSpec
 
 __all__ = ["BevelBackend", "SIDES"]
+
+
+def _pool_cycle(cuts: tuple, torque_nm: float, asm: Assembly | None) -> dict:
+    """A pool process's cycle: its copy of the backend forked with the pool (:func:`ltca.design.driver._pool`)."""
+    from .driver import _BACKEND
+    return _BACKEND.worker_cycle(cuts, torque_nm, asm)
 
 #: flank name of the case -> pinion side it is cut on
 SIDES = {"working": "concave", "coast": "convex"}
@@ -88,6 +95,9 @@ class BevelBackend:
         self.bodies: dict = {}
         self._cuts: dict = {}
         self._start_targets: dict = {}
+        #: a process pool forked after :meth:`prepare` (it shares the bodies): a candidate's cycles run side by side
+        self.pool = None
+        self._worker_pair: tuple = (None, None)
 
     # ------------------------------------------------------------------------------------------ values
     def baseline(self) -> dict[str, float]:
@@ -221,30 +231,38 @@ class BevelBackend:
 
     def evaluate(self, values: dict[str, float]) -> Measures:
         """Loaded TE peak-to-peak and peak interior pressure at every torque; the edge load share and the edge
-        margin at the top torque over the nominal mounting and the tolerance box's corners."""
+        margin at the top torque over the nominal mounting and the tolerance box's corners. With :attr:`pool`
+        the cycles run in its processes (the same numbers: each cycle is computed alone)."""
         t0 = time.perf_counter()
         n = len(self.torques_nm)
-        cycles = 0
+        top = max(self.torques_nm, key=abs)
+        c = self.spec.constraints
+        tasks = [(t, None) for t in self.torques_nm]
+        if c.edge_margin_mm is not None or c.max_edge_share is not None:
+            tasks += [(top, asm) for asm in self.corners()[1:]]
         try:
             pair = self.pair(values)
-            per = {}
-            for t in self.torques_nm:
-                per[t] = cycle_measures(*self._cycle(pair, t))
-                cycles += 1
-            top = max(self.torques_nm, key=abs)
-            share, margin = per[top]["edge_share"], per[top]["margin"]
-            c = self.spec.constraints
-            if c.edge_margin_mm is not None or c.max_edge_share is not None:
-                for asm in self.corners()[1:]:
-                    m = cycle_measures(*self._cycle(pair, top, asm))
-                    cycles += 1
-                    share, margin = max(share, m["edge_share"]), min(margin, m["margin"])
+            if self.pool is None:
+                ms = [cycle_measures(*self._cycle(pair, t, asm)) for t, asm in tasks]
+            else:
+                cuts = (pair.pinion.concave, pair.pinion.convex)
+                ms = self.pool.starmap(_pool_cycle, [(cuts, t, asm) for t, asm in tasks], chunksize=1)
         except _FAILURES as exc:
-            return Measures((math.nan,) * n, (math.nan,) * n, 0.0, time.perf_counter() - t0, max(cycles, 1),
+            return Measures((math.nan,) * n, (math.nan,) * n, 0.0, time.perf_counter() - t0, 1,
                             math.inf, f"{type(exc).__name__}: {exc}"[:400])
-        return Measures(tuple(per[t]["te_ptp"] for t in self.torques_nm),
-                        tuple(per[t]["pressure"] for t in self.torques_nm), share, time.perf_counter() - t0,
-                        cycles, margin)
+        at_top = [ms[self.torques_nm.index(top)]] + ms[n:]
+        share, margin = max(m["edge_share"] for m in at_top), min(m["margin"] for m in at_top)
+        return Measures(tuple(m["te_ptp"] for m in ms[:n]), tuple(m["pressure"] for m in ms[:n]), share,
+                        time.perf_counter() - t0, len(tasks), margin)
+
+    def worker_cycle(self, cuts: tuple, torque_nm: float, asm: Assembly | None) -> dict:
+        """:func:`ltca.design.bevel_checks.cycle_measures` of a candidate pinion's cycle in a pool process (the
+        pinion's cuts are sent; the pair is kept for the candidate's next cycles, so is its flank table)."""
+        key = pickle.dumps(cuts)
+        if self._worker_pair[0] != key:
+            self._worker_pair = (key, BevelPair(self.blank, self.gear, MemberCut("pinion", self.blank.pinion.z,
+                                                                                    *cuts)))
+        return cycle_measures(*self._cycle(self._worker_pair[1], torque_nm, asm))
 
     def box_report(self, values: dict[str, float]) -> dict:
         """A design at the top torque at the nominal mounting and each corner of the tolerance box: loaded TE

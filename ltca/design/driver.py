@@ -149,7 +149,8 @@ def optimise(case_path: str, out: str, resume: bool = False, progress: bool = Tr
     ``DIR/design.json``.
 
     ``workers`` processes (default: the cores, at most 2 when not given) compute the objective map and the Harris
-    curves in parallel; the search itself is sequential (each candidate depends on the previous ones)."""
+    curves in parallel; the search itself is sequential (each candidate depends on the previous ones), but a
+    bevel candidate's cycles (torques, tolerance-box corners) run side by side in them."""
     from ..case import read_toml
     from ..outputs import RunDir, signature_of
     t_start = time.perf_counter()
@@ -188,15 +189,21 @@ def optimise(case_path: str, out: str, resume: bool = False, progress: bool = Tr
                                                                    f" (infeasible, violation {e.violation:.3g})"))
                 return e
             return ev
-        ev_base = evaluate("baseline")(base)
-        ev_start = evaluate("start")(start)
-        _check_edges(spec, backend, ev_start, file)
-        found = search(spec, start, evaluate("search"), max(ev_start.objective, 1e-6))
-        best = found.best
-        say(f"optimum after {found.calls} candidates: " + ", ".join(f"{k} {x:.4g}" for k, x in best.values.items())
-            + f", objective {best.objective:.3f} arcsec (start {ev_start.objective:.3f}); {found.message}")
-        designs = (("baseline", base), ("optimum", best.values))
         with _pool(backend, workers) as pool:
+            # the pool is forked with the prepared backend; a backend that can runs a candidate's cycles in it
+            backend.pool = pool
+            try:
+                ev_base = evaluate("baseline")(base)
+                ev_start = evaluate("start")(start)
+                _check_edges(spec, backend, ev_start, file)
+                found = search(spec, start, evaluate("search"), max(ev_start.objective, 1e-6))
+            finally:
+                backend.pool = None
+            best = found.best
+            say(f"optimum after {found.calls} candidates: " + ", ".join(f"{k} {x:.4g}" for k, x in
+                                                                       best.values.items())
+                + f", objective {best.objective:.3f} arcsec (start {ev_start.objective:.3f}); {found.message}")
+            designs = (("baseline", base), ("optimum", best.values))
             grid = _objective_map(spec, best.values, hist, evaluate("map"), pool)
             if pool is not None:
                 todo = [v for _, v in designs if not hist.has(v, harris)]
