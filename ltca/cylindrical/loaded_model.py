@@ -51,9 +51,9 @@ class Fidelity:
         it at their centres only, so its minimum is missed by up to half a cell times the slope jump. A
         nearly conformal pair (internal, tooth difference one) has a nominal half-width of most of a
         module, and cells from it alone miss the kink by more than its share of the deflection. Seed
-        004 at 3000 N m (``b`` = 2.50 mm, coarse): 0.84 mm cells saw the wheel's tip corner on satellite
-        tooth -8 at 41.0 um instead of 28.5 um (the exact gap) and gave that pair a share of 0.049; the
-        share is 0.100 +- 0.001 for every cell of 0.04 module (0.12 mm) or less (measured down to 0.0133)."""
+        004 at 3000 N m (``b`` = 2.50 mm, coarse): 0.83 mm cells saw the wheel's tip corner on satellite
+        tooth -8 at 41.0 um instead of 28.5 um (the exact gap) and gave that pair a share of 0.051; the
+        share is 0.0995 to 0.1006 for every cell of 0.04 module (0.12 mm) or less (measured down to 0.0133)."""
         ds = half_width / self.cells_per_b
         return min(ds, self.ds_max) if self.ds_max > 0 else ds
 
