@@ -94,12 +94,14 @@ def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict
     b = model.face_width
     dz = b / fid.slices
     zc = -0.5 * b + dz * (np.arange(fid.slices) + 0.5)
-    ds = lm.half_width(torque) / fid.cells_per_b
+    b_h = lm.half_width(torque)
+    ds = fid.cell_size(b_h)
+    cpb = b_h / ds                                      # cells per half-width as used (more where capped)
     roll = model.phi_pitch - phi1
     u_w = float(np.tan(model.pair.alpha_w))
     s_edge2 = gear_tip_on_pinion(model)
-    stride = max(1, int(fid.cells_per_b // 2))
-    half = int(np.ceil((fid.window + 1.0) * fid.cells_per_b))
+    stride = max(1, int(cpb // 2))
+    half = int(np.ceil((fid.window + 1.0) * cpb))
     out, lattice = [], {}
     for k in lm.teeth1:
         lat = line_lattice(p1, roll + k * model.pitch_angle, u_w, ds, dz, s_lo)
@@ -128,7 +130,7 @@ def contact_strips(lm: LoadedModel, phi1: float, theta_guess: float, widen: dict
         np.minimum.at(best, J, g)
         slices = np.flatnonzero(best <= cap)            # slices that can come into contact
         ic = np.array([I[(J == j) & (g == best[j])][0] for j in slices], int)
-        nw = np.ceil(fid.window * fid.cells_per_b * np.array([widen.get((k, j), 1.0) for j in slices])).astype(int)
+        nw = np.ceil(fid.window * cpb * np.array([widen.get((k, j), 1.0) for j in slices])).astype(int)
         # the window and one cell beyond each end (is the strip open there?), clipped to both flanks
         count = 2 * nw + 3
         I, J = _runs(ic - nw - 1, count), np.repeat(slices, count)

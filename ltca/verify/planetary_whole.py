@@ -13,8 +13,10 @@ close can). Same quantities on both sides:
   in a wheel space on the line of centres), the roll of the pair model;
 * loaded TE: satellite rotation (wheel fixed) beyond the rigid rotation to first contact, um along the line of
   action (times r_b1) and arcsec of the satellite;
-* share: normal load of satellite tooth k over the sum (pair index k as in ``ltca run``); a pair carries load
-  when its share is at least :data:`ltca.planetary.run.SHARE_MIN`;
+* share: normal load of satellite tooth k over the sum (pair index k as in ``ltca run``; CalculiX: the norm of
+  the summed forces of the tooth's two contact pairs, wheel tip corner and flank,
+  :func:`ltca.verify.whole_gear.tooth_loads`); a pair carries load when its share is at least
+  :data:`ltca.planetary.run.SHARE_MIN`;
 * peak flank pressure, MPa (CalculiX: elliptic fit across the band on the satellite, and the largest nodal
   value; information only: most pairs of this mesh touch at a tip edge, where the pressure is singular and
   both figures depend on the mesh).

@@ -17,9 +17,14 @@ contact lines are taken there, and ``delta`` is counted on top of it. With ``fin
 that carry a contact line get the fine flank size (a 50/51-tooth pair is too large otherwise).
 Most pairs of a tooth difference of one touch at a tip edge: the wheel's tip corner on the satellite flank, or
 the satellite's tip corner on the wheel flank. CalculiX's surface-to-surface contact pushes along the master's
-normal, so the smooth side is the master: where the unloaded contact line lies at the wheel's tip circle
-(within :data:`CORNER`) the wheel band is the slave and the satellite's flank and fillet the master; elsewhere
-the satellite's flank and tip are the slave (a pinion-slave deck, as for external pairs).
+normal, so the smooth side is the master, and the loaded contact of one tooth can reach both corners
+whatever its unloaded line does (seed 004 at 3000 N m: tooth -6, first touching mid-flank, spreads to the
+wheel's tip corner; with the satellite as slave there its nodes took up to 33 GPa at 3-6.5 um overclosure
+against the wheel's tip land and pushed along its normal, lever 65.2 mm about the satellite axis instead of
+r_b1 = 70.48 mm). So every tooth of an internal pair has two pairs on one partition of the wheel's band: the
+wheel's tip-corner zone (:func:`wheel_corner_zone`: the tip land and the flank's first facet rows) as slave
+against the satellite's flank and fillet, and the rest of the wheel's flank as master of the satellite's
+flank and tip (the satellite's tip corner on the wheel flank). A tooth's load sums both (:func:`tooth_loads`).
 
 Read per position: loaded TE (arcsec of the gear, unloaded part removed), load per pinion tooth, mesh
 stiffness ``(T / r_b1) / (b (theta - theta0) r_b1)`` in N/(mm um) (as
@@ -51,9 +56,10 @@ from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact
 from .calculix import _fitted_peak, contact_lines, penalty_slope
 from .whole_root import Member, fillet_stress
 
-__all__ = ["WholeSettings", "WholeResult", "whole_settings", "solve_whole", "stiffness", "FLANK_SLICES", "CORNER"]
+__all__ = ["WholeSettings", "WholeResult", "whole_settings", "solve_whole", "stiffness", "FLANK_SLICES", "CORNER",
+           "wheel_corner_zone", "tooth_loads"]
 
-CORNER = 0.25   # mm: an internal pair's unloaded contact line within this of the wheel's tip circle is a corner contact
+CORNER = 0.25   # mm: least radial depth of an internal wheel's tip-corner zone (wheel_corner_zone)
 
 
 @dataclass(frozen=True)
@@ -119,6 +125,22 @@ def _spec(profile, r_bore, web, b, teeth, st: WholeSettings, lines, side: str | 
                         fillet_side=side, twist=twist(profile), internal=bool(profile.internal))
 
 
+def wheel_corner_zone(mesh, facets: np.ndarray, r_tip: float, h_contact: float) -> np.ndarray:
+    """Which ``facets`` (k, 6) of an internal wheel's band make its tip-corner zone: centroid radius below
+    ``r_tip + max(CORNER, 2 h_contact)`` (the tip land and the flank's first facet rows), mm."""
+    c = mesh.nodes[facets[:, :3]].mean(axis=1)
+    return np.hypot(c[:, 0], c[:, 1]) < r_tip + max(CORNER, 2.0 * h_contact)
+
+
+def tooth_loads(pair_force: dict, pairs, loaded: list, teeth) -> dict:
+    """Normal load (N) of each pinion tooth: the norm of the sum of its pairs' contact forces on the pinion (a
+    pair's force acts on its slave, so a gear-slave pair counts negated)."""
+    f = {int(k): np.zeros(3) for k in teeth}
+    for k, p in zip(loaded, pairs):
+        f[int(k)] = f[int(k)] + (1.0 if p.slave[0] == "pinion" else -1.0) * pair_force.get(p.name, np.zeros(3))
+    return {k: float(np.linalg.norm(v)) for k, v in f.items()}
+
+
 def twist(profile) -> float:
     """tan(beta) / r of a member, rad/mm: its transverse section at z is the one at z = 0 turned by this z."""
     return float(np.tan(profile.beta) / profile.r_ref) if abs(profile.beta) > 1e-12 else 0.0
@@ -158,15 +180,19 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
                    if n in (f"flank_{j}_{side2}", f"tip_{j}", f"tip_{j}_left", f"tip_{j}_right"))
     f1, f2, pairs, loaded = dict(m1.facets), dict(m2.facets), [], []
     for i, (k, _, _) in enumerate(lines):
-        own = (f"flank_{k}_right",)
-        wheel_corner = p2.internal and np.hypot(*(0.5 * (L2[i].p0 + L2[i].p1))[:2]) < p2.r_tip + CORNER
-        if p2.internal:      # the satellite's tip edge (a corner contact) or its fillet below the form circle
-            own += (f"fillet_{k}_right",) if wheel_corner else (f"tip_{k}", f"tip_{k}_right")
-        f1[f"band_{k}"] = facets_near_lines(m1, own, [L1[i]], st.halo)
-        f2[f"band_{k}"] = facets_near_lines(m2, master, [L2[i]], st.halo)
-        sides = [("pinion", (f"band_{k}",)), ("gear", (f"band_{k}",))]
-        pairs.append(ContactPairSpec(f"P{i}", *(sides[::-1] if wheel_corner else sides)))
-        loaded.append(k)
+        own = (f"flank_{k}_right",) + ((f"tip_{k}", f"tip_{k}_right") if p2.internal else ())
+        band1, band2 = facets_near_lines(m1, own, [L1[i]], st.halo), facets_near_lines(m2, master, [L2[i]], st.halo)
+        if p2.internal:     # the wheel's tip corner: its own pair, the satellite's flank and fillet the master
+            corner = wheel_corner_zone(m2, band2, p2.r_tip, st.h_contact)
+            f1[f"corner_{k}"] = facets_near_lines(m1, (f"flank_{k}_right", f"fillet_{k}_right"), [L1[i]], st.halo)
+            f2[f"corner_{k}"], band2 = band2[corner], band2[~corner]
+            if len(f1[f"corner_{k}"]) and len(f2[f"corner_{k}"]):
+                pairs.append(ContactPairSpec(f"W{i}", ("gear", (f"corner_{k}",)), ("pinion", (f"corner_{k}",))))
+                loaded.append(k)
+        f1[f"band_{k}"], f2[f"band_{k}"] = band1, band2
+        if len(band1) and len(band2):
+            pairs.append(ContactPairSpec(f"P{i}", ("pinion", (f"band_{k}",)), ("gear", (f"band_{k}",))))
+            loaded.append(k)
     m1 = type(m1)(m1.nodes, m1.tets, f1, m1.spec_hash, m1.seconds)
     m2 = type(m2)(m2.nodes, m2.tets, f2, m2.spec_hash, m2.seconds)
     delta = lead + st.preload * hint
@@ -200,8 +226,7 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     wall_ccx = run_ccx(work / "job.inp", threads=st.threads)
     res = read_results(work / "job", ids["rot"], tuple(p.name for p in pairs))
     theta = delta - res.rotation
-    loads = {int(k): 0.0 for k in lm.teeth1}
-    loads.update({k: float(np.linalg.norm(res.pair_force.get(p.name, np.zeros(3)))) for k, p in zip(loaded, pairs)})
+    loads = tooth_loads(res.pair_force, pairs, loaded, lm.teeth1)
     p_fit = _fitted_peak(m1, L1, res.contact_nodes, res.contact_pressure, b)
     out = WholeResult(roll_deg, (theta - theta0) / model.pair.ratio * ARCSEC_PER_RAD, loads,
                       stiffness(lm, theta, theta0, torque), p_fit, time.perf_counter() - t_all,
