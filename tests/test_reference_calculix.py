@@ -29,9 +29,10 @@ xfail at every position when frozen (ours then 253.1 / 168.9 / 244.5 MPa at 0 / 
 on a 2 mm fillet were read 0.05 mm inside (chord sagitta 0.11 mm) with the stress of the one element there, at
 points 0.42 mm apart along the fillet. Since issue 18 (``ROOT_REMEASURED``) the read fillets are meshed at 0.4 of
 their smallest radius of curvature, the stress is averaged at the nodes as CalculiX's and read 0.1 mm apart along
-the fillet (:mod:`fem.fillet`): ours at the default fidelity 236.2 / 156.8 / 225.2 MPa (pinion), 226.6 / 156.3 /
-249.5 MPa (gear), converged over coarse / default / fine within 2.5 % (tests/test_commands.py); the root stresses'
-xfails at freeze no longer apply and are checked at 5 % like the rest.
+the fillet (:mod:`fem.fillet`): ours at the default fidelity 234.2 / 159.5 / 224.1 MPa (pinion, +1.2 / -0.4 /
+-1.2 %), 219.6 / 151.0 / 242.3 MPa (gear, -0.0 / -2.8 / -0.7 %), converged over coarse / default / fine within 2 %
+at each position (tests/test_commands.py); the root stresses' xfails at freeze no longer apply and are checked at
+5 % like the rest.
 """
 from __future__ import annotations
 

@@ -15,7 +15,8 @@ swept surfaces are exact helicoids (the kernel evaluates them through the sweep)
 twisted helical gear needs no lofting of transverse sections and meshes in seconds. A web narrower
 than the face splits the sweep into axial stacks; the web's volumes outside its width are dropped.
 The 3D mesh is graded from ``h_flank`` at the fine teeth (slope 0.6) up to half the body depth far
-away, so the whole 360 deg ring costs about what a segment did.
+away, so the whole 360 deg ring costs about what a segment did. The fillets whose root stress is read
+(``fillets``) are meshed at ``h_fillet``, graded at slope 1 into the body (:mod:`fem.fillet`, issue 18).
 
 Conventions as in :mod:`fem.solids.spec`: points (n, 3) in mm, tooth ``k`` is the outline rotated by
 ``-k 2 pi / z``, 10-node tetrahedra in the meshio order, straight edges (mid-edge nodes at the edge
