@@ -108,7 +108,7 @@ def interpolation_matrix(nodes: np.ndarray, tets: np.ndarray, points: np.ndarray
 def _stress_coefficients(g: np.ndarray, bary: np.ndarray, lam: float, mu: float) -> np.ndarray:
     """d sigma_v / d u_ik at barycentric points ``bary`` (n, 4) of elements with barycentric gradients ``g``
     (n, 4, 3), (n, 6, 10, 3), Voigt xx, yy, zz, yz, xz, xy."""
-    G = np.einsum("icd,nd,nck->nik", _T, bary, g)                       # grad N_i, (n, 10, 3)
+    G = np.matmul(np.einsum("icd,nd->nic", _T, bary), g)               # grad N_i, (n, 10, 3)
     S = np.zeros((len(g), 6, 10, 3))
     for k in range(3):
         S[:, k, :, k] += 2 * mu * G[:, :, k]
