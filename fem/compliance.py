@@ -32,8 +32,9 @@ import scipy.sparse as sp
 
 from geometry.cylindrical import arc_length, helical_flank
 from .elastic import assemble_stiffness
+from .fillet import fillet_points, fillet_size
 from .loads import patch_loads, patch_quadrature
-from .readout import interpolation_matrix, stress_matrix
+from .readout import interpolation_matrix, nodal_stress, stress_matrix
 from .solids import GearBodySpec, SegmentSpec, build_gear_body
 from .solver import factorize
 
@@ -55,9 +56,12 @@ class ComplianceSpec:
     depth: float                  # shallower read depth d of the regular part (also 2d), mm; 0: no near field
     young: float
     poisson: float
-    root_points: tuple[int, int] = (10, 7)   # fillet points (along fillet, along face) per loaded tooth
+    root_points: tuple[int, int] | None = None  # fillet read-out points (along fillet, along face) per loaded tooth;
+                                                # None: fem.fillet.ROOT_STEP apart
     web: tuple[float, float, float, float] | None = None  # (r_rim, r_hub, web width, web offset), mm; None: solid
     far_teeth: str = "none"       # teeth away from the load: "none" (root circle) or "full" (see fem.solids.gear_body)
+    fillet: float = 0.0           # element size on the loaded teeth's read fillets / their smallest radius of curvature
+                                  # (fem.fillet.fillet_size); 0: h_flank
 
 
 @dataclass
@@ -137,28 +141,6 @@ def principal_max(sig: np.ndarray) -> np.ndarray:
     return np.linalg.eigvalsh(T)[..., -1]
 
 
-def _fillet_points(profile, side: int, count: tuple[int, int], face_width: float, internal: bool):
-    """Points 0.05 mm inside the `side` fillet (transverse outline kind 1), (m, 3) for tooth 0."""
-    xy, kind, sd = np.asarray(profile.xy), np.asarray(profile.kind), np.asarray(profile.side)
-    idx = np.flatnonzero((kind == 1) & (sd == side))
-    if idx.size < 2:
-        idx = np.flatnonzero((kind == 0) & (sd == side))
-    if idx.size < 2:
-        return np.zeros((0, 3))
-    pick = idx[np.linspace(0, idx.size - 1, count[0]).round().astype(int)]
-    t = xy[np.clip(pick + 1, 0, len(xy) - 1)] - xy[np.clip(pick - 1, 0, len(xy) - 1)]
-    t /= np.linalg.norm(t, axis=1, keepdims=True)
-    inward = np.stack([t[:, 1], -t[:, 0]], 1) * (-1.0 if internal else 1.0)
-    p2 = xy[pick] + 0.05 * inward
-    z = np.linspace(-0.45 * face_width, 0.45 * face_width, count[1])
-    twist = np.tan(profile.beta) / profile.r_ref
-    ang = twist * z[None, :]
-    c, s = np.cos(ang), np.sin(ang)
-    x = c * p2[:, 0, None] - s * p2[:, 1, None]
-    y = s * p2[:, 0, None] + c * p2[:, 1, None]
-    return np.stack([x, y, np.broadcast_to(z, x.shape)], -1).reshape(-1, 3)
-
-
 def _rotate_tooth(points: np.ndarray, tooth: int, z: int) -> np.ndarray:
     a = -tooth * 2 * np.pi / z
     R = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1.0]])
@@ -204,9 +186,12 @@ def segment_spec(profile, teeth, r_bore: float, face_width: float, h_flank: floa
 def body_spec(profile, spec: ComplianceSpec) -> GearBodySpec:
     """The whole-gear body of a generated profile (geometry.involute.ToothProfile) for a compliance spec."""
     seg = segment_spec(profile, spec.teeth, spec.r_bore, spec.face_width, spec.h_flank, spec.h_body)
+    h_fillet = fillet_size(seg.outline, seg.kind, seg.side, spec.side, spec.fillet, spec.h_flank)
+    side = "right" if spec.side > 0 else "left"
     return GearBodySpec(seg.outline, seg.kind, seg.side, seg.z, seg.teeth, seg.r_bore, seg.face_width,
                         seg.lead_twist, seg.internal, rim=spec.web, far_teeth=spec.far_teeth,
-                        h_flank=seg.h_flank, h_body=seg.h_body)
+                        h_flank=seg.h_flank, h_body=seg.h_body, h_fillet=h_fillet,
+                        fillets=tuple(f"fillet_{k}_{side}" for k in spec.loaded) if h_fillet else ())
 
 
 def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None) -> BodyCompliance:
@@ -239,18 +224,19 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     depth = np.minimum(spec.depth, 0.15 * thick)
     names = [f"{kind}_{k}_{'right' if spec.side > 0 else 'left'}" for k in spec.loaded
              for kind in ("flank", "fillet")] + [f"tip_{k}" for k in spec.loaded]
-    base = _fillet_points(profile, spec.side, spec.root_points, b, profile.internal)
+    base = fillet_points(profile, spec.side, b, profile.internal, spec.root_points)
     roots = [_rotate_tooth(base, k, profile.z) for k in spec.loaded]
     R = np.concatenate(roots) if roots else np.zeros((0, 3))
     root_tooth = np.concatenate([np.full(len(base), k) for k in spec.loaded]) if roots else np.zeros(0, int)
     spacing = max(np.diff(s_grid).max(), np.diff(z_grid).max())
     return flank_compliance(spec, mesh, "rim" if profile.internal else "bore", flanks, s_grid, z_grid, depth,
-                            spacing, names, R, root_tooth, {"mesh": t_mesh}, say)
+                            spacing, names, R, root_tooth, {"mesh": t_mesh}, say, recovery="nodal")
 
 
 def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray, z_grid: np.ndarray,
                      depth: np.ndarray, spacing: float, load_groups: list[str], root_points: np.ndarray,
-                     root_tooth: np.ndarray, timings: dict | None = None, progress=None) -> BodyCompliance:
+                     root_tooth: np.ndarray, timings: dict | None = None, progress=None,
+                     recovery: str = "element") -> BodyCompliance:
     """The compliance of any meshed gear body on its loaded flank grids: the one path for every gear type.
 
     Parameters
@@ -275,6 +261,9 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
         Facet groups that carry the patch loads (missing names are skipped).
     root_points : ndarray (m, 3); root_tooth : ndarray (m,)
         Stress read-out points in the fillets, and their teeth.
+    recovery : {"element", "nodal"}
+        Stress at the read-out points: of the element containing each, or averaged at the nodes as CalculiX's
+        (:func:`fem.readout.stress_matrix`). The cylindrical bodies use "nodal" (issue 18).
     """
     say = progress or (lambda msg: None)
     t = dict(timings or {})
@@ -307,7 +296,13 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
     O = sp.csr_matrix((-NN.ravel(), (np.repeat(np.arange(len(Y)), 3), np.arange(3 * len(Y)))),
                       shape=(len(Y), 3 * len(Y))) @ Pm
     R = root_points
-    S = stress_matrix(mesh.nodes, mesh.tets, spec.young, spec.poisson, R) if len(R) else sp.csr_matrix((0, K.shape[0]))
+    P = None
+    if not len(R):
+        S = sp.csr_matrix((0, K.shape[0]))
+    elif recovery == "nodal":              # observe the nodal stresses, interpolate them to the points after
+        P, S = nodal_stress(mesh.nodes, mesh.tets, spec.young, spec.poisson, R)
+    else:
+        S = stress_matrix(mesh.nodes, mesh.tets, spec.young, spec.poisson, R)
     t["setup"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     out = fact.solve(F, observe=sp.vstack([O, S]).tocsr())
@@ -332,6 +327,6 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
     # loads, which breaks symmetry only at the level of the discretisation error: keep the symmetric part
     # so that the contact matrix stays symmetric positive definite.
     C = 0.5 * (C + C.T)
-    out = out[len(Y):]
+    out = out[len(Y):] if P is None else P @ out[len(Y):]
     return BodyCompliance(spec, s_grid, z_grid, C, depth, R, np.asarray(root_tooth, int), out.reshape(len(R), 6, n),
                           K.shape[0], mesh, fact, F, t)

@@ -8,9 +8,9 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.spatial import cKDTree
 
-from .elastic import _T, _affine, _check_mesh, lame, p2_shape
+from .elastic import EDGES, _T, _affine, _check_mesh, lame, p2_shape
 
-__all__ = ["locate_points", "interpolation_matrix", "stress_matrix"]
+__all__ = ["locate_points", "interpolation_matrix", "stress_matrix", "nodal_stress"]
 
 
 def locate_points(nodes: np.ndarray, tets: np.ndarray, points: np.ndarray,
@@ -105,8 +105,30 @@ def interpolation_matrix(nodes: np.ndarray, tets: np.ndarray, points: np.ndarray
                          shape=(3 * n, 3 * len(nodes)))
 
 
+def _stress_coefficients(g: np.ndarray, bary: np.ndarray, lam: float, mu: float) -> np.ndarray:
+    """d sigma_v / d u_ik at barycentric points ``bary`` (n, 4) of elements with barycentric gradients ``g``
+    (n, 4, 3), (n, 6, 10, 3), Voigt xx, yy, zz, yz, xz, xy."""
+    G = np.matmul(np.einsum("icd,nd->nic", _T, bary), g)               # grad N_i, (n, 10, 3)
+    S = np.zeros((len(g), 6, 10, 3))
+    for k in range(3):
+        S[:, k, :, k] += 2 * mu * G[:, :, k]
+        S[:, :3, :, k] += lam * G[:, None, :, k]
+    for v, (a, b) in zip((3, 4, 5), ((1, 2), (0, 2), (0, 1))):
+        S[:, v, :, a] = mu * G[:, :, b]
+        S[:, v, :, b] = mu * G[:, :, a]
+    return S
+
+
+def _rows(S: np.ndarray, tets: np.ndarray, n_dofs: int) -> sp.csr_matrix:
+    """Sparse (6 k, n_dofs) matrix of the coefficients S (k, 6, 10, 3) of elements ``tets`` (k, 10), one row block each."""
+    k = len(S)
+    r = np.broadcast_to(6 * np.arange(k)[:, None, None, None] + np.arange(6)[:, None, None], S.shape)
+    c = np.broadcast_to(_point_dofs(tets, np.arange(k))[:, None], S.shape)
+    return sp.csr_matrix((S.ravel(), (r.ravel(), c.ravel())), shape=(6 * k, n_dofs))
+
+
 def stress_matrix(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float,
-                  points: np.ndarray) -> sp.csr_matrix:
+                  points: np.ndarray, recovery: str = "element") -> sp.csr_matrix:
     """Matrix mapping nodal displacements to Cauchy stress at points.
 
     Parameters
@@ -116,8 +138,14 @@ def stress_matrix(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float,
     E, nu : float
         Young's modulus [MPa], Poisson ratio.
     points : ndarray, (n, 3)
-        Points [mm] (the element containing each point is used; on a shared face the
-        choice is arbitrary, stresses being discontinuous there).
+        Points [mm].
+    recovery : {"element", "nodal"}
+        "element": the stress of the element containing each point (discontinuous between elements; on a shared
+        face the choice is arbitrary). "nodal": the stress of every element at each of its 10 nodes, averaged at
+        the node over the elements sharing it, interpolated to the point with the P2 shape functions of the
+        element containing it: the nodal stresses of CalculiX's ``*EL FILE S`` (its C3D10 stress, linear in the
+        element, extrapolated from the integration points to the nodes and averaged there; CalculiX manual,
+        ``*EL FILE``), continuous, and less sensitive to where the nodes of a faceted curved surface fall.
 
     Returns
     -------
@@ -125,18 +153,70 @@ def stress_matrix(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float,
         Rows ``6i + v`` with Voigt order v = xx, yy, zz, yz, xz, xy [MPa per mm].
     """
     nodes, tets = _check_mesh(nodes, tets, 10, "tets")
+    if recovery not in ("element", "nodal"):
+        raise ValueError(f"recovery = {recovery!r} must be 'element' or 'nodal'")
+    lam, mu = lame(E, nu)
+    elem, bary = locate_points(nodes, tets, points)
+    n_dofs = 3 * len(nodes)
+    if recovery == "element":
+        _, _, g, _ = _affine(nodes, tets[elem])
+        return _rows(_stress_coefficients(g, bary, lam, mu), tets[elem], n_dofs)
+    P, A = nodal_stress(nodes, tets, E, nu, points)
+    return (P @ A).tocsr()
+
+
+def nodal_stress(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float,
+                 points: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """The nodal-averaged stress at points (``stress_matrix(..., recovery="nodal")``) as two factors ``P @ A``.
+
+    ``A`` (6u, 3N) maps the displacements to the averaged stress at the u nodes of the elements containing the
+    points, ``P`` (6n, 6u) interpolates those with the P2 shape functions. Observing ``A`` in a solve and applying
+    ``P`` after keeps many points in few elements cheap (the product has far more non-zeros than its factors).
+
+    Parameters
+    ----------
+    nodes : ndarray, (N, 3)
+    tets : ndarray of int, (M, 10)
+    E, nu : float
+        Young's modulus [MPa], Poisson ratio.
+    points : ndarray, (n, 3)
+        Points [mm].
+
+    Returns
+    -------
+    P : scipy.sparse.csr_matrix, (6n, 6u)
+    A : scipy.sparse.csr_matrix, (6u, 3N)
+        Rows in Voigt order xx, yy, zz, yz, xz, xy per point / node [MPa per mm].
+    """
+    nodes, tets = _check_mesh(nodes, tets, 10, "tets")
     lam, mu = lame(E, nu)
     elem, bary = locate_points(nodes, tets, points)
     n = len(elem)
-    _, _, g, _ = _affine(nodes, tets[elem])                             # (n, 4, 3)
-    G = np.einsum("icd,nd,nck->nik", _T, bary, g)                       # grad N_i, (n, 10, 3)
-    S = np.zeros((n, 6, 10, 3))                                          # d sigma_v / d u_ik
-    for k in range(3):
-        S[:, k, :, k] += 2 * mu * G[:, :, k]
-        S[:, :3, :, k] += lam * G[:, None, :, k]
-    for v, (a, b) in zip((3, 4, 5), ((1, 2), (0, 2), (0, 1))):
-        S[:, v, :, a] = mu * G[:, :, b]
-        S[:, v, :, b] = mu * G[:, :, a]
-    row = np.broadcast_to(6 * np.arange(n)[:, None, None, None] + np.arange(6)[:, None, None], S.shape)
-    col = np.broadcast_to(_point_dofs(tets, elem)[:, None], S.shape)
-    return sp.csr_matrix((S.ravel(), (row.ravel(), col.ravel())), shape=(6 * n, 3 * len(nodes)))
+    # the nodes of the containing elements, and every (element, local node) incidence of those nodes
+    used, inv = np.unique(tets[elem], return_inverse=True)
+    inv = inv.reshape(n, 10)
+    pos = np.searchsorted(used, tets).clip(0, len(used) - 1)
+    e_idx, a_idx = np.nonzero(used[pos] == tets)
+    node_of = pos[e_idx, a_idx]                                         # index into `used`
+    count = np.bincount(node_of, minlength=len(used)).astype(float)
+    near, e_of = np.unique(e_idx, return_inverse=True)
+    _, _, g, _ = _affine(nodes, tets[near])
+    S = _stress_coefficients(g[e_of], _NODE_BARY[a_idx], lam, mu) / count[node_of, None, None, None]
+    # sum the 6 x 3 blocks of each (averaged node, displacement node) pair: a block sparse row matrix
+    key = (node_of[:, None].astype(np.int64) * len(nodes) + tets[e_idx]).ravel()
+    order = np.argsort(key, kind="stable")
+    ks = key[order]
+    start = np.flatnonzero(np.r_[True, ks[1:] != ks[:-1]])
+    blocks = np.add.reduceat(S.transpose(0, 2, 1, 3).reshape(-1, 6, 3)[order], start, axis=0)
+    row, col = np.divmod(ks[start], len(nodes))
+    A = sp.bsr_matrix((blocks, col, np.searchsorted(row, np.arange(len(used) + 1))),
+                      shape=(6 * len(used), 3 * len(nodes))).tocsr()
+    v = np.tile(np.arange(6), 10 * n)
+    P = sp.csr_matrix((np.repeat(p2_shape(bary).ravel(), 6),
+                       (np.repeat(6 * np.arange(n), 60) + v, 6 * np.repeat(inv.ravel(), 6) + v)),
+                      shape=(6 * n, 6 * len(used)))
+    return P, A
+
+
+#: barycentric coordinates of the 10 nodes of the tetrahedron (vertices, then the mid-edges of ``EDGES``)
+_NODE_BARY = np.concatenate([np.eye(4), 0.5 * (np.eye(4)[EDGES[:, 0]] + np.eye(4)[EDGES[:, 1]])])

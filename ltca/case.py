@@ -22,15 +22,16 @@ DEG = math.pi / 180.0
 
 #: Fidelity presets: flank element size (x module), body element size (x module), compliance grid
 #: (profile x face per flank), contact cells across the Hertz width, face slices, near-field on/off, and the
-#: longest contact cell along a helical face (x module; more slices on a wide helical face), and the widest
-#: contact cell across the line (x module; it resolves a tip edge's gap kink, :meth:`Fidelity.cell_size`).
+#: longest contact cell along a helical face (x module; more slices on a wide helical face), the widest contact cell
+#: across the line (x module; it resolves a tip edge's gap kink, :meth:`Fidelity.cell_size`), and the element size
+#: on the loaded teeth's read fillets (x their smallest radius of curvature, at most h_flank; fem.fillet, issue 18).
 FIDELITIES: dict[str, dict[str, Any]] = {
     "coarse": dict(h_flank=0.45, h_body=1.6, grid=(7, 6), cells_per_b=3, slices=8, near_field=True, window=1.8,
-                   slice_length=0.5, ds_max=0.04),
+                   slice_length=0.5, ds_max=0.04, fillet=0.4),
     "default": dict(h_flank=0.3, h_body=1.3, grid=(9, 8), cells_per_b=5, slices=14, near_field=True, window=2.0,
-                    slice_length=0.25, ds_max=0.03),
+                    slice_length=0.25, ds_max=0.03, fillet=0.4),
     "fine": dict(h_flank=0.2, h_body=1.0, grid=(12, 10), cells_per_b=8, slices=20, near_field=True, window=2.5,
-                 slice_length=0.17, ds_max=0.02),
+                 slice_length=0.17, ds_max=0.02, fillet=0.35),
 }
 
 

@@ -105,6 +105,26 @@ def test_internal_gear_is_held_at_its_outer_rim():
     assert "bore" not in mesh.facets
 
 
+def test_read_fillets_are_meshed_at_h_fillet_and_nothing_else_changes(fzg_model):
+    """Issue 18: the named fillets get edges of about h_fillet, the other fillets keep h_flank; without h_fillet the
+    spec (its hash: the mesh caches) is what it was."""
+    from fem.solids import build_gear_body
+    p = fzg_model.pinion
+    plain = _spec(p, 20.0, 14.0, h_flank=2.0, h_body=6.0)
+    assert plain.spec_hash == _spec(p, 20.0, 14.0, h_flank=2.0, h_body=6.0, h_fillet=None, fillets=()).spec_hash
+    spec = dataclasses.replace(plain, h_fillet=0.8, fillets=("fillet_0_right",))
+    assert spec.spec_hash != plain.spec_hash
+    mesh = build_gear_body(spec)
+
+    def edge(group):
+        tri = mesh.nodes[mesh.facets[group][:, :3]]
+        return float(np.mean(np.linalg.norm(tri - np.roll(tri, 1, axis=1), axis=2)))
+    print(f"mean fillet edge: refined {edge('fillet_0_right'):.3f} mm, other {edge('fillet_0_left'):.3f} mm")
+    assert 0.6 < edge("fillet_0_right") < 1.0 and edge("fillet_0_left") > 1.4
+    with pytest.raises(ValueError, match="h_fillet"):
+        dataclasses.replace(plain, h_fillet=3.0)
+
+
 def test_far_teeth_change_the_flank_compliance_by_under_one_percent(fzg_model, tmp_path):
     """The design choice 'far teeth left out' measured against the body with every tooth (DESIGN.md)."""
     from fem.compliance import ComplianceSpec, body_compliance

@@ -23,10 +23,16 @@ about -4.9 deg; the gear's highest point of single contact, where its root stres
 at 0 deg the ladder 225 / 150 / 100 um band with 1.0 / 0.675 / 0.45 mm fillets, 0 deg frozen at its finest.
 Its strict xfails: the flank peak at -9 and -4.5 deg, where CalculiX's 150 um band does not resolve the
 contact (at -9 deg the pinion's contact near its root has a Hertz half-width of about 127 um: one element;
-at 0 deg the ladder gives 1722 / 1506 / 1434 MPa, Richardson 1398, ours 1387); the pinion's root stress at
-every position, where ours at the default fidelity (1.35 mm elements on the fillet, read 0.05 mm inside,
-where the stress falls by about 6 % over those 0.05 mm) is not converged: ours at 0 deg coarse / default /
-fine 219.9 / 253.1 / 242.0 MPa, CalculiX 223.4 / 235.4 / 231.4 MPa over its ladder.
+at 0 deg the ladder gives 1722 / 1506 / 1434 MPa, Richardson 1398, ours 1387). The pinion's root stress was a strict
+xfail at every position when frozen (ours then 253.1 / 168.9 / 244.5 MPa at 0 / -9 / -4.5 deg, +9.4 / +5.4 /
++7.8 %): not converged (ours at 0 deg coarse / default / fine 219.9 / 253.1 / 242.0 MPa) because 1.35 mm elements
+on a 2 mm fillet were read 0.05 mm inside (chord sagitta 0.11 mm) with the stress of the one element there, at
+points 0.42 mm apart along the fillet. Since issue 18 (``ROOT_REMEASURED``) the read fillets are meshed at 0.4 of
+their smallest radius of curvature, the stress is averaged at the nodes as CalculiX's and read 0.1 mm apart along
+the fillet (:mod:`fem.fillet`): ours at the default fidelity 234.2 / 159.5 / 224.1 MPa (pinion, +1.2 / -0.4 /
+-1.2 %), 219.6 / 151.0 / 242.3 MPa (gear, -0.0 / -2.8 / -0.7 %), converged over coarse / default / fine within 2 %
+at each position (tests/test_commands.py); the root stresses' xfails at freeze no longer apply and are checked at
+5 % like the rest.
 """
 from __future__ import annotations
 
@@ -42,6 +48,9 @@ REFERENCES = sorted((Path(__file__).resolve().parent / "reference").glob("*_calc
 BOUNDS = {"te": 0.02, "stiffness": 0.02, "share": 0.03, "flank_pressure": 0.05, "root_pinion": 0.05,
           "root_gear": 0.05}
 QUANTITIES = tuple(BOUNDS)
+#: quantities whose read-out changed after the references were frozen (issue 18: the root stress); their
+#: ``ours_at_freeze`` no longer marks an xfail
+ROOT_REMEASURED = ("root_pinion", "root_gear")
 _LM: dict = {}
 _OURS: dict = {}
 
@@ -98,7 +107,7 @@ def _cases():
                     continue
                 marks = []
                 then = ref.get("ours_at_freeze")
-                if then is not None and deviation(q, then, ref) > BOUNDS[q]:
+                if then is not None and q not in ROOT_REMEASURED and deviation(q, then, ref) > BOUNDS[q]:
                     shown = (f"{then[q]} vs {ref[q]}" if q == "share" else
                              f"{then[q]:.4g} vs {_reference_value(ref, q):.4g} "
                              f"({100 * (then[q] / _reference_value(ref, q) - 1):+.1f} %)")

@@ -24,12 +24,15 @@ largest principal fillet stress the LTCA reports for the loaded tooth, over the 
 mesh, extrapolated linearly in the roll angle to the outer point of single contact (where the whole load
 acts, as in ISO).
 
-Bands (FZG C14, 200 N m: ISO sigma_F0 = 277.1 MPa pinion, 268.7 MPa gear): ISO's Y_S is an empirical fit, so
-ISO and a converged FE differ by a few per cent for standard teeth (the figure of the literature on FE against
-ISO 6336-3 is not re-derived here). The fine FE (``-m slow``) meets ISO within 1 % on both members (pinion
--0.9 %, gear -0.7 % when this was written) and is bounded at 4 %. The default fidelity's pinion (+0.5 %) is
-bounded at 4 %; its gear fillet reads 8 % low (-8.2 %: fewer elements across the larger fillet, the
-fine mesh removes it), bounded at 10 % and recorded here as a known discretisation error of the default.
+FZG C14, 200 N m: ISO sigma_F0 = 277.1 MPa pinion, 268.7 MPa gear. ISO's Y_S is an empirical fit, so ISO and a
+converged FE differ by a few per cent for standard teeth (the figure of the literature on FE against ISO 6336-3 is
+not re-derived here). Ours, converged over the fidelities since issue 18 (the read fillets meshed at 0.4 of their
+radius, nodal-averaged stress; fem.fillet) and within 3 % of the whole-gear CalculiX root stress at three positions
+(tests/test_reference_calculix.py), reads below ISO on both members: default pinion -4.4 %, gear -6.3 %; fine
+(``-m slow``) pinion -4.8 %, gear -5.2 %. Each is guarded at 2.5 % around its measured deviation. (Before issue 18
+the default read +0.5 % / -8.2 % and the fine -0.9 % / -0.7 %: 1.35 mm elements on the 2 mm fillet, the stress of
+one element read at points 0.42 mm apart, not converged: the pinion at the pitch point read 219.9 / 253.1 / 242.0 MPa
+coarse / default / fine.)
 """
 from __future__ import annotations
 
@@ -112,17 +115,21 @@ def test_iso_closed_form_equals_the_library_root_section(fzg_case, member):
     assert sec.Y_F == pytest.approx(iso["Y_F"], rel=1e-3) and sec.Y_S == pytest.approx(iso["Y_S"], rel=2e-3)
 
 
-@pytest.mark.parametrize("member, degrees, band", [("pinion", [2.0, 3.0, 4.0, 5.0], 0.04),
-                                                   ("gear", [-4.5, -3.5, -2.5, -1.5], 0.10)])
-def test_fe_root_stress_against_iso_method_b(fzg_lm, member, degrees, band):
+#: measured FE / ISO - 1 (default fidelity, fine fidelity) and the guard around it
+DEVIATION = {"pinion": (-0.044, -0.048), "gear": (-0.063, -0.052)}
+GUARD = 0.025
+
+
+@pytest.mark.parametrize("member, degrees", [("pinion", [2.0, 3.0, 4.0, 5.0]), ("gear", [-4.5, -3.5, -2.5, -1.5])])
+def test_fe_root_stress_against_iso_method_b(fzg_lm, member, degrees):
     iso = _iso_method_b(fzg_lm.model.case, member)
     fe = _fe_at_hpstc(fzg_lm, iso, member, degrees)
-    assert fe == pytest.approx(iso["sigma_F0"], rel=band), (fe, iso["sigma_F0"])
+    assert fe / iso["sigma_F0"] - 1 == pytest.approx(DEVIATION[member][0], abs=GUARD), (fe, iso["sigma_F0"])
 
 
 @pytest.mark.slow
 def test_fine_fe_root_stress_against_iso_method_b(fzg_case, tmp_path):
-    """The fine fidelity (flank elements 0.2 m) on both members within 4 % of ISO Method B (about 40 s)."""
+    """The fine fidelity (flank elements 0.2 m) on both members against ISO Method B (about 60 s)."""
     from ltca.case import FIDELITIES
     from ltca.cylindrical.loaded_model import Fidelity, prepare
     from ltca.cylindrical.model import build_model
@@ -131,4 +138,5 @@ def test_fine_fe_root_stress_against_iso_method_b(fzg_case, tmp_path):
                  cycle_rolls(30, 16), fzg_case.torques[0], cache_dir=tmp_path)
     for member, degrees in (("pinion", [2.0, 3.0, 4.0, 5.0]), ("gear", [-4.5, -3.5, -2.5, -1.5])):
         iso = _iso_method_b(fzg_case, member)
-        assert _fe_at_hpstc(lm, iso, member, degrees) == pytest.approx(iso["sigma_F0"], rel=0.04)
+        fe = _fe_at_hpstc(lm, iso, member, degrees)
+        assert fe / iso["sigma_F0"] - 1 == pytest.approx(DEVIATION[member][1], abs=GUARD), (member, fe)

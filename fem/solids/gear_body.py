@@ -15,7 +15,8 @@ swept surfaces are exact helicoids (the kernel evaluates them through the sweep)
 twisted helical gear needs no lofting of transverse sections and meshes in seconds. A web narrower
 than the face splits the sweep into axial stacks; the web's volumes outside its width are dropped.
 The 3D mesh is graded from ``h_flank`` at the fine teeth (slope 0.6) up to half the body depth far
-away, so the whole 360 deg ring costs about what a segment did.
+away, so the whole 360 deg ring costs about what a segment did. The fillets whose root stress is read
+(``fillets``) are meshed at ``h_fillet``, graded at slope 1 into the body (:mod:`fem.fillet`, issue 18).
 
 Conventions as in :mod:`fem.solids.spec`: points (n, 3) in mm, tooth ``k`` is the outline rotated by
 ``-k 2 pi / z``, 10-node tetrahedra in the meshio order, straight edges (mid-edge nodes at the edge
@@ -66,6 +67,11 @@ class GearBodySpec:
         and replaced by the root circle ("none"). Measured in the tests against each other.
     h_flank, h_body : float
         Element size at the fine teeth and far from them (mm).
+    h_fillet : float or None
+        Element size on the ``fillets`` surfaces (mm), graded like ``h_flank`` into the body: the fillets whose
+        root stress is read (:func:`fem.fillet.fillet_size`). None: ``h_flank``.
+    fillets : tuple of str
+        Facet groups meshed at ``h_fillet``, e.g. ``("fillet_0_right",)``.
     order : int
         1 or 2.
     size_fields : tuple of str
@@ -88,9 +94,13 @@ class GearBodySpec:
     h_body: float = 4.0
     order: int = 2
     size_fields: tuple[str, ...] = ()
+    h_fillet: float | None = None
+    fillets: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         xy = np.asarray(self.outline, dtype=float)
+        if self.h_fillet is not None and not 0 < self.h_fillet <= self.h_flank:
+            raise ValueError(f"h_fillet = {self.h_fillet} must be in (0, h_flank = {self.h_flank}]")
         if xy.ndim != 2 or xy.shape[1] != 2 or len(xy) < 8 or not np.all(np.isfinite(xy)):
             raise ValueError(f"outline must be finite with shape (n >= 8, 2), got {xy.shape}")
         if int(self.z) < 3:
@@ -132,6 +142,8 @@ class GearBodySpec:
                        int(self.order))).encode())
         for expr in self.size_fields:
             h.update(expr.encode())
+        if self.h_fillet is not None and self.fillets:
+            h.update(repr(("h_fillet", float(self.h_fillet), tuple(self.fillets))).encode())
         return h.hexdigest()[:20]
 
 
@@ -332,34 +344,46 @@ def build_gear_body(spec: GearBodySpec, cache_dir=None, progress: bool = False) 
         if dropped:
             gmsh.model.removeEntities([(3, v) for v in dropped])
         labels = _label(spec, volumes, refs)
-        nodes, tets, facets = mesh_labelled(labels, volumes, spec.order, lambda fine: _size_field(spec, fine))
+        nodes, tets, facets = mesh_labelled(labels, volumes, spec.order, lambda fine: _size_field(spec, fine, labels))
     mesh = SegmentMesh(nodes, tets, facets, spec.spec_hash, time.perf_counter() - t0)
     store_cached(cache_dir, "body", mesh)
     return mesh
 
 
-def _size_field(spec: GearBodySpec, fine: list[int]) -> None:
-    """``h_flank`` on the fine surfaces, growing with slope 0.6 to ``h_body`` and on, far from the teeth, to half
-    the body's radial depth or face width (whichever is smaller): a large gear's far ring stays cheap."""
-    import gmsh
-    fld = gmsh.model.mesh.field
-    extent = max(spec.face_width, 10.0)
-    dist = fld.add("Distance")
-    fld.setNumbers(dist, "SurfacesList", fine)
-    fld.setNumber(dist, "Sampling", int(np.clip(np.ceil(2.0 * extent / spec.h_flank), 20, 300)))
-    thr = fld.add("Threshold")
-    fld.setNumber(thr, "InField", dist)
-    fld.setNumber(thr, "SizeMin", spec.h_flank)
+def _size_field(spec: GearBodySpec, fine: list[int], labels: dict[int, str]) -> None:
+    """``h_flank`` on the fine surfaces (``h_fillet`` on the named fillets), growing with slope 0.6 to ``h_body``
+    and on, far from the teeth, to half the body's radial depth or face width (whichever is smaller): a large
+    gear's far ring stays cheap."""
     r = np.hypot(*np.asarray(spec.outline, float).T)
     depth = (spec.r_support - r.max()) if spec.internal else (r.min() - spec.r_support)
     h_far = max(spec.h_body, 0.5 * min(depth, spec.face_width))
+    fields = [_graded(fine, spec.h_flank, h_far, spec.face_width, _SLOPE)]
+    fillets = [t for t, s in labels.items() if s in spec.fillets]
+    if spec.h_fillet is not None and fillets:
+        fields.append(_graded(fillets, spec.h_fillet, h_far, spec.face_width, _FILLET_SLOPE))
+    background_size(fields, spec.size_fields)
+
+
+def _graded(surfaces: list[int], h: float, h_far: float, face_width: float, slope: float = 0.6) -> int:
+    """A gmsh size field: ``h`` within ``h / 2`` of ``surfaces``, growing with ``slope`` to ``h_far``."""
+    import gmsh
+    fld = gmsh.model.mesh.field
+    dist = fld.add("Distance")
+    fld.setNumbers(dist, "SurfacesList", surfaces)
+    fld.setNumber(dist, "Sampling", int(np.clip(np.ceil(2.0 * max(face_width, 10.0) / h), 20, 300)))
+    thr = fld.add("Threshold")
+    fld.setNumber(thr, "InField", dist)
+    fld.setNumber(thr, "SizeMin", h)
     fld.setNumber(thr, "SizeMax", h_far)
-    fld.setNumber(thr, "DistMin", 0.5 * spec.h_flank)
-    fld.setNumber(thr, "DistMax", 0.5 * spec.h_flank + (h_far - spec.h_flank) / _SLOPE)
-    background_size(thr, spec.size_fields)
+    fld.setNumber(thr, "DistMin", 0.5 * h)
+    fld.setNumber(thr, "DistMax", 0.5 * h + (h_far - h) / slope)
+    return thr
 
 
 _SLOPE = 0.6
+#: the read fillets' sizes grow faster into the body: the root stress needs small elements within about a fillet
+#: element of the surface (issue 18), and the slope 0.6 of the flanks would fill the tooth root with them
+_FILLET_SLOPE = 1.0
 _OPTIONS = {"Geometry.ExtrudeSplinePoints": 5, "General.NumThreads": 1, "Mesh.MeshSizeFromPoints": 0, "Mesh.MeshSizeExtendFromBoundary": 0,
             "Mesh.MeshSizeFromCurvature": 0, "Mesh.SecondOrderLinear": 1, "Mesh.Algorithm": 6,
             "Mesh.Algorithm3D": 1, "Mesh.Optimize": 1, "Mesh.ElementOrder": 1}

@@ -32,6 +32,7 @@ class Fidelity:
     window: float = 3.0     # strip half-width in nominal Hertz half-widths
     slice_length: float = 0.0   # longest contact cell along a helical face, mm (0: ``slices`` alone)
     ds_max: float = 0.0     # widest contact cell across the line, mm (0: ``cells_per_b`` alone); see :meth:`cell_size`
+    fillet: float = 0.0     # element size on the read fillets / their smallest radius of curvature (0: h_flank)
 
     @staticmethod
     def from_preset(params: dict, module: float, **override) -> "Fidelity":
@@ -41,7 +42,8 @@ class Fidelity:
         return Fidelity(h_flank=h, h_body=p["h_body"] * module, grid=tuple(p["grid"]),
                         cells_per_b=p["cells_per_b"], slices=p["slices"], near_field=p["near_field"],
                         depth=p.get("depth", 0.75 * h) if p["near_field"] else 0.0, window=p.get("window", 2.0),
-                        slice_length=p.get("slice_length", 0.0) * module, ds_max=p.get("ds_max", 0.0) * module)
+                        slice_length=p.get("slice_length", 0.0) * module, ds_max=p.get("ds_max", 0.0) * module,
+                        fillet=p.get("fillet", 0.0))
 
     def cell_size(self, half_width: float) -> float:
         """Contact cell size across the line (mm) for a nominal Hertz half-width ``half_width`` (mm):
@@ -146,7 +148,8 @@ def plan_bodies(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: floa
     def spec(teeth, side, r_range, r_bore, web):
         return ComplianceSpec(teeth=tuple(range(min(teeth) - 1, max(teeth) + 2)), loaded=teeth, side=side,
                               r_range=r_range, grid=fid.grid, face_width=b, r_bore=r_bore, web=web, h_flank=fid.h_flank,
-                              h_body=fid.h_body, depth=fid.depth, young=case.young, poisson=case.poisson)
+                              h_body=fid.h_body, depth=fid.depth, young=case.young, poisson=case.poisson,
+                              fillet=fid.fillet)
     return BodyPlan(teeth1, teeth2, spec(teeth1, +1, model.pinion_range(), model.r_bore1, model.web1),
                     spec(teeth2, model.gear_side, model.gear_range(), model.r_bore2, model.web2),
                     b_nom, R_nom, torque, time.perf_counter() - t0)

@@ -94,7 +94,7 @@ def prepare_satellite(sm: SatelliteModel, fid: Fidelity, phis: np.ndarray, torqu
         return ComplianceSpec(teeth=tuple(range(min(teeth) - 1, max(teeth) + 2)), loaded=teeth, side=side,
                               r_range=r_range, grid=fid.grid, face_width=b, r_bore=r_support, h_flank=fid.h_flank,
                               h_body=fid.h_body, depth=fid.depth, young=case.young, poisson=case.poisson,
-                              far_teeth=far_teeth)
+                              far_teeth=far_teeth, fillet=fid.fillet)
     body1 = body_compliance(pm.pinion, spec(teeth1, +1, pm.pinion_range(), pm.r_bore1), cache_dir, say)
     body2 = body_compliance(pm.gear, spec(teeth2, pm.gear_side, pm.gear_range(), pm.r_bore2), cache_dir, say)
     for name in ("mesh", "assembly", "factorisation", "setup", "solves"):

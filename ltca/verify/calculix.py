@@ -214,8 +214,9 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
         return out
     b = model.face_width
     t0 = time.perf_counter()
-    spec1 = body_spec(p1, dataclasses.replace(lm.body1.spec, h_flank=st.h_flank, h_body=st.h_body))
-    spec2 = body_spec(p2, dataclasses.replace(lm.body2.spec, h_flank=st.h_flank, h_body=st.h_body))
+    # the deck's own sizes (TE and sharing, no root stress: its fillets are not refined, fem.fillet)
+    spec1 = body_spec(p1, dataclasses.replace(lm.body1.spec, h_flank=st.h_flank, h_body=st.h_body, fillet=0.0))
+    spec2 = body_spec(p2, dataclasses.replace(lm.body2.spec, h_flank=st.h_flank, h_body=st.h_body, fillet=0.0))
     L1, L2 = body_lines(inv1), body_lines(inv2)
     F1 = F2 = ()
     if focus is not None:

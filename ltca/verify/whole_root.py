@@ -1,7 +1,7 @@
 """Root (fillet) stress of the whole-gear CalculiX model, read as our solver reads its own (issue 18).
 
 Our solver's root stress (:meth:`fem.compliance.BodyCompliance.root_max`, points from
-``fem.compliance._fillet_points``) is, per loaded tooth, the largest principal stress at points
+:func:`fem.fillet.fillet_points`) is, per loaded tooth, the largest principal stress at points
 ``DEPTH`` = 0.05 mm inside the fillet on the side of the loaded flank (the tension side of an external
 gear), over the fillet's whole length (outline kind 1) and the face ``|z| <= 0.45 b``; a member's root
 stress is the largest over its loaded teeth. Here the same, on CalculiX's results: its nodal stresses
@@ -9,7 +9,9 @@ stress is the largest over its loaded teeth. Here the same, on CalculiX's result
 :func:`fem.calculix.run.read_nodal_stress`) interpolated with the quadratic shape functions at points
 0.05 mm inside the same fillets (densely: every ``step`` along the fillet and along the face, so the
 maximum is not missed between points), and their largest principal stress, computed here (nothing of our
-compliance code is used). The depth matters: near a fillet of radius rho the stress falls by about
+compliance code is used). Ours averages its element stresses at the nodes the same way
+(:func:`fem.readout.nodal_stress`) and reads 0.1 mm apart along the fillet, 1 mm along the face
+(:data:`fem.fillet.ROOT_STEP`). The depth matters: near a fillet of radius rho the stress falls by about
 2 x / rho over a depth x (relative stress gradient of a notch, about 2/rho), some 5 % at 0.05 mm in a
 2 mm fillet. The largest principal nodal stress on the fillet surface itself is given beside it for
 information (``surface``). Where the maximum lies: the tooth, the radius from the member's axis, the
