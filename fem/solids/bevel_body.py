@@ -41,7 +41,7 @@ from .spec import SegmentMesh, outline_hash
 
 __all__ = ["BevelBodySpec", "build_bevel_body", "convex_shift"]
 
-_VERSION = "bevel-mapped-1"
+_VERSION = "bevel-mapped-2"        # 2: tooth rows graded towards the root (DEPTH_GRADING)
 
 
 @dataclass(frozen=True)
@@ -132,12 +132,20 @@ def convex_shift(concave: Flank, convex: Flank, z: int, t0: float, L0: float,
     return float((a_c - up * thick - a_v + np.pi) % (2 * np.pi) - np.pi)
 
 
+#: the tooth's node rows crowd towards the root as (k / n) ** DEPTH_GRADING, so that the fillet (the lowest tenth or
+#: so of the depth) has several element rows: uniform rows put it inside one, and the root stress did not converge
+#: (283 / 295 / 274 MPa coarse / default / fine, 175 N m). Measured (``ltca convergence``, 8 positions): exponent 1.6:
+#: 251 / 249 / 240 MPa; 2.2: 240 / 242 / 237 MPa, with loaded TE mean -2.3 / -1.0 % and TE p-p +5.5 / +1.1 % of fine
+#: at coarse / default (uniform: -2.5 / -0.9 % and +6.5 / +3.5 %).
+DEPTH_GRADING = 2.2
+
+
 def _depth_rows(spec: BevelBodySpec) -> np.ndarray:
     fl = spec.concave
     rn = np.asarray(fl.meta["Rn"])
     span = float(np.mean(rn[-1] - rn[0]))
     t_root = -spec.root_offset / span
-    return np.concatenate([[t_root], np.linspace(0.0, 1.0, spec.divisions[1])])
+    return np.concatenate([[t_root], np.linspace(0.0, 1.0, spec.divisions[1]) ** DEPTH_GRADING])
 
 
 def _flank_theta(fl: Flank, t: np.ndarray, L: np.ndarray, shift: float) -> np.ndarray:
