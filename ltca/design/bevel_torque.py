@@ -7,7 +7,7 @@ flatten the loaded TE, 4.4 arcsec at 175 and 350 N m), where the loaded pattern 
 transfer points into the toe (toe/heel margin 0.16 mm); and an interior minimum, where the parabola absorbs the
 pair's elastic approach (loaded minus unloaded TE) with the pattern 3-7 mm off the toe and heel. The interior
 minimum moves up with the torque, m21 about 0.27-0.36 times the approach: 13, 25, 35 and >= 55 arcsec at 35, 100,
-175 and 350 N m (bodies held at their mounting; loaded TE p-p there 2.96, 3.66, 5.21, 7.71 arcsec). The constraint (``margin_mm`` off the toe and the heel,
+175 and 350 N m (bodies held at their mounting; loaded TE p-p there 2.91, 3.75, 5.39, 7.93 arcsec). The constraint (``margin_mm`` off the toe and the heel,
 :func:`ltca.design.bevel_checks.edge_margin`) removes the first basin at 175 and 350 N m; the constrained
 optimum is the interior one at every torque. The smallest m21 that keeps the margin grows with the torque too
 (3, 7, 9, 19 arcsec at the nominal mounting; a +-0.05 mm E/P/G box needs more).
@@ -20,7 +20,7 @@ points: the first feasible one), the constrained optimum and its margins, the un
 constraint is active at the constrained optimum; with a tolerance box, the constrained optimum and the boundary
 design are checked again over its corners (``*_over_box``: the smallest margins, the largest edge share).
 
-Reproduce the table of the closing note (one process: 2 min 44 s on a busy 2-core machine, load 4)::
+Reproduce the table of the closing note (one process: 1 min 43 s on a quiet 2-core machine)::
 
     python3 -m ltca.design.bevel_torque cases/spiral_bevel_optimise.toml --out out/m21_torque.json
 """
