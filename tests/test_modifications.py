@@ -164,7 +164,7 @@ def test_lead_slope_moves_the_load_mirror_wise(fzg_lm, fzg_case):
     assert zp - z0 < -0.2                                             # away from the relieved end z = +b/2
     assert (zp - z0) == pytest.approx(-(zm - z0), rel=0.03)          # mirror
     assert (z2 - z0) == pytest.approx(2 * (zp - z0), rel=0.03)       # linear while the whole face carries
-    assert np.abs(lp - lm_[::-1]).max() < 0.02 * lp.max()
+    assert np.abs(lp - lm_[::-1]).max() < 0.03 * lp.max()            # the mesh's own asymmetry: 2.4 % measured
     assert lp[0] > l0[0] > lp[-1]
 
 
@@ -175,7 +175,9 @@ def test_symmetric_crowning_gives_symmetric_load(fzg_lm, fzg_case):
         lc, zc = _face_loads(solve_position(with_case(fzg_lm, **_mods(fzg_case, pinion=dict(lead_crowning=C))),
                                             0.0, T))
         assert abs(zc) < 0.02
-        assert np.abs(lc - lc[::-1]).max() < 0.02 * lc.max()
+        # 3 %: the fillet-resolved body (issue 18) is an unstructured gmsh mesh, not mirror-symmetric in z: the
+        # slice loads of a symmetric case differ by up to 2.2 % of the largest (measured), identities aside
+        assert np.abs(lc - lc[::-1]).max() < 0.03 * lc.max()
         assert lc[6] > l0[6] and lc[0] < 0.8 * l0[0]
 
 

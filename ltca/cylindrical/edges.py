@@ -113,7 +113,7 @@ def edge_summary(lm: LoadedModel, results: list[PositionResult], torque: float) 
     j = int(np.argmax([e["flank_peak"] for e in per]))
     r, e = results[j], per[j]
     i = e["flank_index"]
-    out = {"max_flank_pressure_mpa": round(e["flank_peak"], 3)}
+    out = {"max_flank_pressure_mpa": round(e["flank_peak"], 6)}      # as the other figures
     if i >= 0:
         d1 = 2 * radius_of_arc(r.s[i], p1.r_base)
         d2 = 2 * radius_of_arc(r.gear_s[i], p2.r_base)

@@ -40,6 +40,7 @@ from ..bevel.loaded import solve_position
 from ..bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
 from ..errors import CaseError
 from .bevel_checks import cycle_measures, machine_violations
+from .pool import backend
 from .problem import Measures
 from .schema import DesignSpec
 
@@ -47,9 +48,8 @@ __all__ = ["BevelBackend", "SIDES"]
 
 
 def _pool_cycle(cuts: tuple, torque_nm: float, asm: Assembly | None) -> dict:
-    """A pool process's cycle: its copy of the backend forked with the pool (:func:`ltca.design.driver._pool`)."""
-    from .driver import _BACKEND
-    return _BACKEND.worker_cycle(cuts, torque_nm, asm)
+    """A pool process's cycle: its copy of the backend forked with the pool (:func:`ltca.design.pool.forked_pool`)."""
+    return backend().worker_cycle(cuts, torque_nm, asm)
 
 #: flank name of the case -> pinion side it is cut on
 SIDES = {"working": "concave", "coast": "convex"}

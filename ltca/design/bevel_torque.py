@@ -1,16 +1,16 @@
 """The bevel m21 against the design torque (issue 14, physics): a constrained scan of the working flank's TE
 magnitude m21 at a fixed path angle eta2, with each design torque as the only (top) torque.
 
-What it shows (seed 000's eta2 = 22 deg, 8 positions, coarse fidelity; the table of the closing note). The loaded
-TE peak-to-peak over m21 has two basins: the lowest m21 (1 arcsec: the neighbouring pairs share the load early and
+What it shows (seed 000's eta2 = 22 deg, 8 positions, coarse fidelity; the table of the closing note). The loaded TE
+peak-to-peak over m21 has two basins: the lowest m21 (1 arcsec: the neighbouring pairs share the load early and
 flatten the loaded TE, 4.4 arcsec at 175 and 350 N m), where the loaded pattern runs along the path past the
 transfer points into the toe (toe/heel margin 0.16 mm); and an interior minimum, where the parabola absorbs the
 pair's elastic approach (loaded minus unloaded TE) with the pattern 3-7 mm off the toe and heel. The interior
 minimum moves up with the torque, m21 about 0.27-0.36 times the approach: 13, 25, 35 and >= 55 arcsec at 35, 100,
-175 and 350 N m (bodies held at their mounting; loaded TE p-p there 2.91, 3.75, 5.39, 7.93 arcsec). The constraint (``margin_mm`` off the toe and the heel,
-:func:`ltca.design.bevel_checks.edge_margin`) removes the first basin at 175 and 350 N m; the constrained
-optimum is the interior one at every torque. The smallest m21 that keeps the margin grows with the torque too
-(3, 7, 9, 19 arcsec at the nominal mounting; a +-0.05 mm E/P/G box needs more).
+175 and 350 N m (bodies held at their mounting; loaded TE p-p there 2.91, 3.75, 5.39, 7.93 arcsec). The constraint
+(``margin_mm`` off the toe and the heel, :func:`ltca.design.bevel_checks.edge_margin`) removes the first basin at
+175 and 350 N m; the constrained optimum is the interior one at every torque. The smallest m21 that keeps the margin
+grows with the torque too (3, 7, 9, 19 arcsec at the nominal mounting; a +-0.05 mm E/P/G box needs more).
 
 What a row holds (per m21 and torque, at the case's mounting, unless ``corners``: the worst over the tolerance
 box): loaded TE peak-to-peak (arcsec), the elastic approach (mean loaded minus mean unloaded TE, arcsec), the

@@ -10,7 +10,6 @@ finishes; ``resume`` replays the finished ones (:mod:`ltca.design.history`).
 """
 from __future__ import annotations
 
-import contextlib
 import os
 import sys
 import itertools
@@ -22,6 +21,7 @@ import numpy as np
 
 from ..errors import CaseError
 from .history import History
+from .pool import backend, forked_pool
 from .problem import Evaluation
 from .schema import DesignSpec, parse_design
 
@@ -189,7 +189,7 @@ def optimise(case_path: str, out: str, resume: bool = False, progress: bool = Tr
                                                                    f" (infeasible, violation {e.violation:.3g})"))
                 return e
             return ev
-        with _pool(backend, workers) as pool:
+        with forked_pool(backend, workers) as pool:
             # the pool is forked with the prepared backend; a backend that can runs a candidate's cycles in it
             backend.pool = pool
             try:
@@ -242,32 +242,12 @@ def _check_edges(spec: DesignSpec, backend, ev_start: Evaluation, file: str) -> 
                         f"contact along the face ({', '.join(backend.lead_variables)})", file)
 
 
-#: the backend of this process, for the pool's workers (forked after the compliance is computed: they share it)
-_BACKEND = None
-
-
 def _measure(values: dict):
-    return _BACKEND.evaluate(values)
+    return backend().evaluate(values)
 
 
 def _curve(values: dict, torques) -> list[float]:
-    return _BACKEND.te_ptp(values, torques)
-
-
-@contextlib.contextmanager
-def _pool(backend, workers: int):
-    """``workers`` forked processes sharing ``backend`` (None for one worker)."""
-    global _BACKEND
-    if workers < 2:
-        yield None
-        return
-    import multiprocessing as mp
-    _BACKEND = backend
-    try:
-        with mp.get_context("fork").Pool(workers) as pool:
-            yield pool
-    finally:
-        _BACKEND = None
+    return backend().te_ptp(values, torques)
 
 
 def _objective_map(spec: DesignSpec, at: dict, hist: History, evaluate, pool) -> dict | None:
