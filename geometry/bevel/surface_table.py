@@ -73,7 +73,6 @@ class _Branch:
         grown[:, 1:] |= grown[:, :-1].copy()
         grown[:, :-1] |= grown[:, 1:].copy()
         self.bad = grown
-        self.centre_error = float(np.max(err[~bad.ravel()], initial=0.0))
 
     @staticmethod
     def _rows(smooth: Smooth, t: np.ndarray, L: np.ndarray, reach: float):
