@@ -152,8 +152,16 @@ class BevelBlank:
         mb, A0 = self.member(which), self.outer_cone_distance
         L = self.inner_cone_distance if end == "toe" else A0
         g = mb.pitch_angle
-        Rn = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle))
+        Rn = self.cones(which, L)[0]
         return np.array([L * np.cos(g) - Rn * np.sin(g), L * np.sin(g) + Rn * np.cos(g)])
+
+    def cones(self, which: str, L):
+        """Root and face cones of ``which`` at cone distance ``L`` (mm, scalar or array): their offsets normal to
+        the pitch generatrix in the axial section, mm (root < 0 < face), with the heel (``L`` = A0) at the
+        dedendum and addendum and the cones' angles against the pitch cone (Gleason duplex taper)."""
+        mb, A0 = self.member(which), self.outer_cone_distance
+        root = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle))
+        return root, mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
 
 
 def design_blank(data: BevelBasicData) -> BevelBlank:

@@ -24,13 +24,12 @@ from .tca import Assembly, BevelPair, mesh_frames, to_pitch_coords
 __all__ = ["PointGaps", "MeshGaps", "depth_fraction"]
 
 
-def depth_fraction(mb, blank, off: float, L: np.ndarray, Rn: np.ndarray) -> np.ndarray:
-    """Depth fraction of axial-section points (L, Rn) (mm) on a member's flank grid whose lowest row lies ``off``
+def depth_fraction(blank, member: str, off: float, L: np.ndarray, Rn: np.ndarray) -> np.ndarray:
+    """Depth fraction of axial-section points (L, Rn) (mm) on ``member``'s flank grid whose lowest row lies ``off``
     (mm) above the root cone and whose top row is the face cone (:func:`geometry.bevel.generation.axial_grid`);
-    ``mb`` is the member's :class:`geometry.bevel.blank.MemberBlank`, ``blank`` the pair's blank."""
-    A0 = blank.outer_cone_distance
-    root = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle)) + off
-    face = mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
+    ``blank`` is the pair's :class:`geometry.bevel.blank.BevelBlank`."""
+    root, face = blank.cones(member, L)
+    root = root + off
     return (Rn - root) / (face - root)
 
 

@@ -167,8 +167,7 @@ def axial_grid(blank: BevelBlank, member: str, nu: int = 20, nv: int = 30, root_
     mb = blank.member(member)
     A0 = blank.outer_cone_distance
     L = np.linspace(blank.inner_cone_distance, A0, nv)
-    root = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle))
-    face = mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
+    root, face = blank.cones(member, L)
     off = 0.03 * blank.data.module if root_offset is None else root_offset
     t = np.linspace(0.0, 1.0, nu)
     Rn = (root + off)[None, :] + t[:, None] * (face - root - off)[None, :]

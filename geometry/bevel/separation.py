@@ -68,6 +68,7 @@ class _Member:
                  nu: int, nv: int, root_offset: float):
         self.fc, self.B, self.O, self.name = fc, B, O, member
         self.mb = mb = blank.member(member)
+        self.blank = blank
         self.A0, self.Ai, self.off = blank.outer_cone_distance, blank.inner_cone_distance, root_offset
         self.flank = _generated(fc, blank, member, nu, nv, root_offset)
         self.t, self.L = self.flank.u, self.flank.v
@@ -80,9 +81,8 @@ class _Member:
         self.table = None                      # a SurfaceTable serving surface() (use_table), else exact
 
     def _cones(self, L):
-        mb = self.mb
-        root = -(mb.dedendum - (self.A0 - L) * np.tan(mb.dedendum_angle)) + self.off
-        return root, mb.addendum - (self.A0 - L) * np.tan(mb.addendum_angle)
+        root, face = self.blank.cones(self.name, L)
+        return root + self.off, face
 
     def axial(self, t, L):
         """(Z, rho) of grid coordinates (t, L), mm."""

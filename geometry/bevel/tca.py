@@ -143,8 +143,7 @@ def _inside(blank: BevelBlank, member: str, r: np.ndarray) -> bool:
     mb = blank.member(member)
     L, Rn = to_pitch_coords(r, mb.pitch_angle)
     A0 = blank.outer_cone_distance
-    root = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle))
-    face = mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
+    root, face = blank.cones(member, L)
     return bool(blank.inner_cone_distance - 1e-9 <= L <= A0 + 1e-9 and root <= Rn <= face + 1e-9)
 
 

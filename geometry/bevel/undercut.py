@@ -77,8 +77,7 @@ def undercut_check(fc: FlankCut, blank: BevelBlank, member: str, n: int = 41) ->
     i0 = np.argmin(np.abs(u - X[1, 0]))
     ref = np.sign(D[i0, n // 2])
     L, Rn = to_pitch_coords(st.r_w, g)
-    root = -(mb.dedendum - (A0 - L) * np.tan(mb.dedendum_angle))
-    face = mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
+    root, face = blank.cones(member, L)
     inside = (L >= Ai) & (L <= A0) & (Rn >= root) & (Rn <= face)
     bad = ok & inside & (np.sign(D) != ref)
     side = fc.side

@@ -277,7 +277,7 @@ def _edge_labels(lm: BevelLoadedModel, U: np.ndarray, res, ok: np.ndarray) -> np
         from geometry.bevel.gaps import depth_fraction as body_t
         bl = lm.pair.blank
         L2, Rn2 = res.L2[rest], res.Rn2[rest]
-        t2 = body_t(bl.gear, bl, lm.gaps.G.off, L2, Rn2)
+        t2 = body_t(bl, "gear", lm.gaps.G.off, L2, Rn2)
         lab[np.flatnonzero(rest)] = np.select(
             [L2 < bl.inner_cone_distance, L2 > bl.outer_cone_distance, t2 > 1.0, t2 < 0.0],
             ["toe", "heel", "gear top", "gear root"], "")

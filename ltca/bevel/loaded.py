@@ -195,8 +195,8 @@ def _system(lm: BevelLoadedModel, cells: list[PairCells]) -> dict:
 def _weights_of(lm: BevelLoadedModel, j: np.ndarray, res):
     bl = lm.pair.blank
     B = lm.bodies
-    t1 = body_t(bl.pinion, bl, B.off1, res.L1, res.Rn1)
-    t2 = body_t(bl.gear, bl, B.off2, res.L2, res.Rn2)
+    t1 = body_t(bl, "pinion", B.off1, res.L1, res.Rn1)
+    t2 = body_t(bl, "gear", B.off2, res.L2, res.Rn2)
     return B.body1.weights(j, t1, res.L1), B.body2.weights(-j, t2, res.L2)
 
 

@@ -13,11 +13,10 @@ __all__ = ["plot_all"]
 
 
 def _outline(pair) -> np.ndarray:
-    bl, g = pair.blank, pair.blank.gear
+    bl = pair.blank
     A0, Ai = bl.outer_cone_distance, bl.inner_cone_distance
     Lb = np.array([Ai, A0])
-    root = -(g.dedendum - (A0 - Lb) * np.tan(g.dedendum_angle))
-    face = g.addendum - (A0 - Lb) * np.tan(g.addendum_angle)
+    root, face = bl.cones("gear", Lb)
     return np.array([[Ai, root[0]], [A0, root[1]], [A0, face[1]], [Ai, face[0]], [Ai, root[0]]])
 
 

@@ -81,10 +81,9 @@ def position_arrays(res: list[BevelPosition], torque_nm: float, band: float = 0.
 
 def pattern_grid(pair, res: list[BevelPosition]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Largest pressure over the cycle on the gear flank in its axial section: (L bins, Rn bins, (nRn, nL) MPa)."""
-    bl, g = pair.blank, pair.blank.gear
+    bl = pair.blank
     A0, Ai = bl.outer_cone_distance, bl.inner_cone_distance
-    root = -(g.dedendum - (A0 - np.array([Ai, A0])) * np.tan(g.dedendum_angle))
-    face = g.addendum - (A0 - np.array([Ai, A0])) * np.tan(g.addendum_angle)
+    root, face = bl.cones("gear", np.array([Ai, A0]))
     Lb = np.linspace(Ai, A0, _BINS[0])
     Rb = np.linspace(root.min(), face.max(), _BINS[1])
     P = np.zeros((_BINS[1], _BINS[0]))

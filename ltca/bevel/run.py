@@ -138,11 +138,10 @@ def plot_bevel(pair: BevelPair, runs: dict, out: Path, title: str) -> list[str]:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    bl, g = pair.blank, pair.blank.gear
+    bl = pair.blank
     A0, Ai = bl.outer_cone_distance, bl.inner_cone_distance
     Lb = np.array([Ai, A0])
-    root = -(g.dedendum - (A0 - Lb) * np.tan(g.dedendum_angle))
-    face = g.addendum - (A0 - Lb) * np.tan(g.addendum_angle)
+    root, face = bl.cones("gear", Lb)
     files = []
     from matplotlib.patches import Polygon
     box = np.array([[Ai, root[0]], [A0, root[1]], [A0, face[1]], [Ai, face[0]]])

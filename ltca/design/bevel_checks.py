@@ -63,14 +63,12 @@ def edge_margin(lm, res) -> float:
 def top_margin(lm, res) -> float:
     """The top margin (module docstring): smallest height of a loaded cell below its member's face cone, mm."""
     bl = lm.pair.blank
-    A0 = bl.outer_cone_distance
     d = math.inf
     for r in res:
         m = r.force > 0
         if m.any():
-            for mb, L, Rn in ((bl.pinion, r.L1[m], r.Rn1[m]), (bl.gear, r.L2[m], r.Rn2[m])):
-                face = mb.addendum - (A0 - L) * np.tan(mb.addendum_angle)
-                d = min(d, float((face - Rn).min()))
+            for member, L, Rn in (("pinion", r.L1[m], r.Rn1[m]), ("gear", r.L2[m], r.Rn2[m])):
+                d = min(d, float((bl.cones(member, L)[1] - Rn).min()))
     return d
 
 
