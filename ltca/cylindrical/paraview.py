@@ -29,6 +29,7 @@ from geometry.pair import rotation_z
 from .loaded import PositionResult, weights_of
 from .loaded_model import LoadedModel
 from .results import flank_lattice, pressure_on_lattice, roll_step
+from .vtu import write_vtu_file
 
 __all__ = ["select_steps", "write_series", "stress_fields"]
 
@@ -94,7 +95,7 @@ class _Body:
                                        "displacement_magnitude_um": mag.astype(np.float32)},
                            cell_data={"von_mises_mpa": [vm.astype(np.float32)],
                                       "principal_stress_mpa": [principal.astype(np.float32)]})
-        meshio.write(str(path), mesh, file_format="vtu", binary=True)
+        write_vtu_file(path, mesh)
 
 
 def _flank_surface(lm: LoadedModel, step: float) -> tuple[np.ndarray, np.ndarray]:
@@ -146,8 +147,8 @@ def write_series(out: Path, lm: LoadedModel, results: list[PositionResult], torq
         peaks.append(float(p.max(initial=0.0)))
         R, t = frame1[:3, :3], frame1[:3, 3]
         f = f"paraview_flank_{j:03d}.vtu"
-        meshio.write(str(out / f), meshio.Mesh((pts @ R.T + t).astype(np.float32), [("quad", quads.astype(np.int32))],
-                                              cell_data={"contact_pressure_mpa": [p]}), file_format="vtu", binary=True)
+        write_vtu_file(out / f, meshio.Mesh((pts @ R.T + t).astype(np.float32), [("quad", quads.astype(np.int32))],
+                                            cell_data={"contact_pressure_mpa": [p]}))
         names.append(f)
         rows += [f'    <DataSet timestep="{rolls[k]:.6g}" part="{i}" name={quoteattr(n.split("_")[1])} '
                  f'file={quoteattr(n)}/>'
