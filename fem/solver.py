@@ -191,18 +191,35 @@ def _mkl_rt_path() -> None:
             return
 
 
+def _free_block(K: sp.csr_matrix, free: np.ndarray, upper: bool = False) -> sp.csr_matrix:
+    """``K[free][:, free]`` for a boolean mask ``free``, with ``upper`` its upper triangle (``sp.triu``), by one
+    pass over K's entries: the same matrix (explicit zeros kept, each row in K's order). scipy's column fancy
+    indexing and ``triu`` took 0.15-0.3 s on a 68k-dof gear body."""
+    K.sum_duplicates()
+    rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+    keep = free[rows] & free[K.indices]
+    if upper:
+        keep &= K.indices >= rows
+    new = np.cumsum(free) - 1
+    m = int(new[-1]) + 1
+    indptr = np.zeros(m + 1, dtype=np.int64)
+    np.cumsum(np.bincount(new[rows[keep]], minlength=m), out=indptr[1:])
+    return sp.csr_matrix((K.data[keep], new[K.indices[keep]], indptr), shape=(m, m))
+
+
 def _pardiso(Kff: sp.csr_matrix, symmetric: bool):
+    """PARDISO on the free block: ``symmetric`` (``mtype=2``) takes ``Kff`` as its upper triangle
+    (:func:`_free_block` with ``upper``), else the whole block (``mtype=11``)."""
     import ctypes
 
     import pypardiso
     from pypardiso.pardiso_wrapper import PyPardisoError
 
     _mkl_rt_path()
+    A = Kff
     if symmetric:
-        A = sp.triu(Kff, format="csr")
         solver = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
     else:
-        A = Kff
         solver = pypardiso.PyPardisoSolver(mtype=11, size_limit_storage=0)
     A.sort_indices()
     solver.factorize(A)
@@ -295,9 +312,10 @@ def factorize(K: sp.spmatrix, fixed_dofs: np.ndarray, method: str = "auto") -> F
     if free.size == 0:
         raise ValueError("fixed_dofs: all dofs are fixed, nothing to solve")
     K = sp.csr_matrix(K, dtype=np.float64)
-    Kff = K[free][:, free].tocsr()
     if method == "auto":
         method = available_methods()[0]
+    # PARDISO's symmetric mode reads the upper triangle only
+    Kff = _free_block(K, mask, upper=method == "pardiso")
     if method == "pardiso":
         solve, release = _pardiso(Kff, symmetric=True)
     elif method == "pardiso-unsym":
