@@ -222,25 +222,18 @@ def _pardiso(Kff: sp.csr_matrix, symmetric: bool):
     else:
         solver = pypardiso.PyPardisoSolver(mtype=11, size_limit_storage=0)
     A.sort_indices()
-    solver.factorize(A)
-    solver.remove_stored_factorization()
-    # After the first call MKL has filled ``iparm`` with its defaults (``iparm(1) = 1``), among
-    # them ``iparm(8) = 2``: two steps of iterative refinement in every solve, which triples the
-    # back-substitution cost. They only pay off against perturbed pivots (``iparm(14)``), which a
-    # Cholesky factor of an SPD matrix never has; the factorisation itself is unchanged.
-    if solver.get_iparm(14) == 0:
-        solver.set_iparm(8, 0)
-
-    # phase 33 = back-substitution with the stored factor; pypardiso documents a direct phase-33 call
-    # (``remove_stored_factorization``) as the way to reuse it without rehashing A. MKL is called here with the
-    # arguments of ``PyPardisoSolver._call_pardiso``, but with the 1-based index arrays made once and the solution
-    # left in Fortran order: pypardiso zeroes x first and copies it to C order after, which cost as much as
-    # a third of the back-substitution of the 216 unit loads of a gear body (68k dofs).
+    if not np.diff(A.indptr).all():     # PARDISO crashes on an empty row (pypardiso's own check)
+        raise ValueError("K: the free block has an empty row: it is singular")
+    # MKL is called with the arguments of ``PyPardisoSolver._call_pardiso`` (pypardiso's ``factorize`` is phase 12,
+    # a direct phase-33 call the documented reuse of its factor), but with the 1-based index arrays made once,
+    # without pypardiso's SHA-1 of A (it keeps it to recognise A in its own ``solve``) and with the solution left
+    # in Fortran order: pypardiso zeroes x first and copies it to C order after, which cost as much as a third
+    # of the back-substitution of the 216 unit loads of a gear body (68k dofs).
     ia, ja = A.indptr.astype(np.int32) + 1, A.indices.astype(np.int32) + 1
     i32 = ctypes.POINTER(ctypes.c_int32)
     f64 = ctypes.POINTER(ctypes.c_double)
 
-    def solve(b: np.ndarray) -> np.ndarray:
+    def call(phase: int, b: np.ndarray) -> np.ndarray:
         b = np.asfortranarray(b, dtype=np.float64)
         x = np.empty_like(b, order="F")
         nrhs = 1 if b.ndim == 1 else b.shape[1]
@@ -248,7 +241,7 @@ def _pardiso(Kff: sp.csr_matrix, symmetric: bool):
         one = ctypes.c_int32(1)
         solver._mkl_pardiso(solver.pt.ctypes.data_as(ctypes.POINTER(solver._pt_type[0])), ctypes.byref(one),
                             ctypes.byref(one), ctypes.byref(ctypes.c_int32(solver.mtype)),
-                            ctypes.byref(ctypes.c_int32(33)), ctypes.byref(ctypes.c_int32(A.shape[0])),
+                            ctypes.byref(ctypes.c_int32(phase)), ctypes.byref(ctypes.c_int32(A.shape[0])),
                             A.data.ctypes.data_as(f64), ia.ctypes.data_as(i32), ja.ctypes.data_as(i32),
                             solver.perm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(nrhs)),
                             solver.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),
@@ -257,7 +250,15 @@ def _pardiso(Kff: sp.csr_matrix, symmetric: bool):
             raise PyPardisoError(error.value)
         return x
 
-    return solve, lambda: solver.free_memory(everything=False)
+    solver.set_iparm(12, 0)             # CSR (pypardiso's setting for a CSR A)
+    call(12, np.zeros((A.shape[0], 1)))  # analysis and numerical factorisation
+    # After the first call MKL has filled ``iparm`` with its defaults (``iparm(1) = 1``), among
+    # them ``iparm(8) = 2``: two steps of iterative refinement in every solve, which triples the
+    # back-substitution cost. They only pay off against perturbed pivots (``iparm(14)``), which a
+    # Cholesky factor of an SPD matrix never has; the factorisation itself is unchanged.
+    if solver.get_iparm(14) == 0:
+        solver.set_iparm(8, 0)
+    return (lambda b: call(33, b)), lambda: solver.free_memory(everything=False)
 
 
 def _cholmod(Kff: sp.csr_matrix):
