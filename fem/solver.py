@@ -26,6 +26,10 @@ Back-substitution cost (FZG C14 pinion body: 63k free dofs, 216 patch loads, 147
 - ``iparm(25)`` (parallel solve variants) made no difference.
 - With `observe`, ``observe @ K^-1 @ F = (K^-1 @ observe.T).T @ F`` (K symmetric), so the cheaper
   side is solved for: the loads when ``k <= r``, the observed rows when ``r < k``.
+- Around the factor (issue 11, FZG C14, 68k dofs per body): PARDISO is called directly (:mod:`fem.pardiso`: no
+  zeroed and C-reordered copy of the solution, no SHA-1 of the matrix), the observed rows gather only the solution
+  rows they read (:class:`_Gather`), and the free block is cut in one pass over K (:func:`_free_block`): about
+  0.5 s CPU per body less, the same numbers to the last bit.
 """
 from __future__ import annotations
 
@@ -44,7 +48,8 @@ def available_methods() -> list[str]:
     """Back-ends importable here, best first (``"splu"`` always)."""
     out = []
     try:
-        _mkl_rt_path()    # before the import: pypardiso builds a solver at import time, which searches for MKL
+        from .pardiso import mkl_rt_path
+        mkl_rt_path()     # before the import: pypardiso builds a solver at import time, which searches for MKL
         import pypardiso  # noqa: F401
         out += ["pardiso", "pardiso-unsym"]
     except ImportError:
@@ -169,28 +174,6 @@ class _Gather:
         return np.asarray(self.A @ X[self.rows])
 
 
-def _mkl_rt_path() -> None:
-    """Tell pypardiso where MKL's runtime is, once per process: without it every solver instance (and the one
-    pypardiso builds when imported) searches the Python prefix with a recursive glob (0.8-1.2 s each, measured).
-    The library's usual places (``lib`` of the prefix, ``Library/bin`` on Windows) are looked at first."""
-    import ctypes.util
-    import glob
-    import os
-    import sys
-
-    if os.environ.get("PYPARDISO_MKL_RT") or ctypes.util.find_library("mkl_rt"):
-        return
-    for pattern in (f"{sys.prefix}/[Ll]ib*/*mkl_rt*", f"{sys.prefix}/Library/bin/*mkl_rt*",
-                    f"{sys.prefix}/[Ll]ib*/**/*mkl_rt*"):
-        for path in sorted(glob.glob(pattern, recursive=True), key=len):
-            try:
-                ctypes.CDLL(path)
-            except OSError:
-                continue
-            os.environ["PYPARDISO_MKL_RT"] = path
-            return
-
-
 def _free_block(K: sp.csr_matrix, free: np.ndarray, upper: bool = False) -> sp.csr_matrix:
     """``K[free][:, free]`` for a boolean mask ``free``, with ``upper`` its upper triangle (``sp.triu``), by one
     pass over K's entries: the same matrix (explicit zeros kept, each row in K's order). scipy's column fancy
@@ -205,60 +188,6 @@ def _free_block(K: sp.csr_matrix, free: np.ndarray, upper: bool = False) -> sp.c
     indptr = np.zeros(m + 1, dtype=np.int64)
     np.cumsum(np.bincount(new[rows[keep]], minlength=m), out=indptr[1:])
     return sp.csr_matrix((K.data[keep], new[K.indices[keep]], indptr), shape=(m, m))
-
-
-def _pardiso(Kff: sp.csr_matrix, symmetric: bool):
-    """PARDISO on the free block: ``symmetric`` (``mtype=2``) takes ``Kff`` as its upper triangle
-    (:func:`_free_block` with ``upper``), else the whole block (``mtype=11``)."""
-    import ctypes
-
-    import pypardiso
-    from pypardiso.pardiso_wrapper import PyPardisoError
-
-    _mkl_rt_path()
-    A = Kff
-    if symmetric:
-        solver = pypardiso.PyPardisoSolver(mtype=2, size_limit_storage=0)
-    else:
-        solver = pypardiso.PyPardisoSolver(mtype=11, size_limit_storage=0)
-    A.sort_indices()
-    if not np.diff(A.indptr).all():     # PARDISO crashes on an empty row (pypardiso's own check)
-        raise ValueError("K: the free block has an empty row: it is singular")
-    # MKL is called with the arguments of ``PyPardisoSolver._call_pardiso`` (pypardiso's ``factorize`` is phase 12,
-    # a direct phase-33 call the documented reuse of its factor), but with the 1-based index arrays made once,
-    # without pypardiso's SHA-1 of A (it keeps it to recognise A in its own ``solve``) and with the solution left
-    # in Fortran order: pypardiso zeroes x first and copies it to C order after, which cost as much as a third
-    # of the back-substitution of the 216 unit loads of a gear body (68k dofs).
-    ia, ja = A.indptr.astype(np.int32) + 1, A.indices.astype(np.int32) + 1
-    i32 = ctypes.POINTER(ctypes.c_int32)
-    f64 = ctypes.POINTER(ctypes.c_double)
-
-    def call(phase: int, b: np.ndarray) -> np.ndarray:
-        b = np.asfortranarray(b, dtype=np.float64)
-        x = np.empty_like(b, order="F")
-        nrhs = 1 if b.ndim == 1 else b.shape[1]
-        error = ctypes.c_int32(0)
-        one = ctypes.c_int32(1)
-        solver._mkl_pardiso(solver.pt.ctypes.data_as(ctypes.POINTER(solver._pt_type[0])), ctypes.byref(one),
-                            ctypes.byref(one), ctypes.byref(ctypes.c_int32(solver.mtype)),
-                            ctypes.byref(ctypes.c_int32(phase)), ctypes.byref(ctypes.c_int32(A.shape[0])),
-                            A.data.ctypes.data_as(f64), ia.ctypes.data_as(i32), ja.ctypes.data_as(i32),
-                            solver.perm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(nrhs)),
-                            solver.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(0)),
-                            b.ctypes.data_as(f64), x.ctypes.data_as(f64), ctypes.byref(error))
-        if error.value != 0:
-            raise PyPardisoError(error.value)
-        return x
-
-    solver.set_iparm(12, 0)             # CSR (pypardiso's setting for a CSR A)
-    call(12, np.zeros((A.shape[0], 1)))  # analysis and numerical factorisation
-    # After the first call MKL has filled ``iparm`` with its defaults (``iparm(1) = 1``), among
-    # them ``iparm(8) = 2``: two steps of iterative refinement in every solve, which triples the
-    # back-substitution cost. They only pay off against perturbed pivots (``iparm(14)``), which a
-    # Cholesky factor of an SPD matrix never has; the factorisation itself is unchanged.
-    if solver.get_iparm(14) == 0:
-        solver.set_iparm(8, 0)
-    return (lambda b: call(33, b)), lambda: solver.free_memory(everything=False)
 
 
 def _cholmod(Kff: sp.csr_matrix):
@@ -317,10 +246,9 @@ def factorize(K: sp.spmatrix, fixed_dofs: np.ndarray, method: str = "auto") -> F
         method = available_methods()[0]
     # PARDISO's symmetric mode reads the upper triangle only
     Kff = _free_block(K, mask, upper=method == "pardiso")
-    if method == "pardiso":
-        solve, release = _pardiso(Kff, symmetric=True)
-    elif method == "pardiso-unsym":
-        solve, release = _pardiso(Kff, symmetric=False)
+    if method in ("pardiso", "pardiso-unsym"):
+        from .pardiso import pardiso_factor
+        solve, release = pardiso_factor(Kff, symmetric=method == "pardiso")
     elif method == "cholmod":
         solve, release = _cholmod(Kff)
     else:
