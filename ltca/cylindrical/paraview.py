@@ -22,7 +22,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from fem.readout import stress_matrix
+from fem.readout import element_stress_matrix
 from geometry.cylindrical import flank_point_normal
 from geometry.pair import rotation_z
 
@@ -76,7 +76,7 @@ class _Body:
         used = np.unique(tets[keep])
         self.nodes = used
         self.tets = np.searchsorted(used, tets[keep]).astype(np.int32)
-        self.S = stress_matrix(nodes, tets, young, poisson, c[keep])
+        self.S = element_stress_matrix(nodes, tets, young, poisson, keep, np.full(4, 0.25))
 
     def displacements(self, grid_forces: np.ndarray) -> np.ndarray:
         """Displacements (n_dofs, k) of the whole body for grid forces (n_grid, k), one back-substitution."""
