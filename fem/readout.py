@@ -10,7 +10,7 @@ from scipy.spatial import cKDTree
 
 from .elastic import EDGES, _T, _affine, _check_mesh, lame, p2_shape
 
-__all__ = ["locate_points", "interpolation_matrix", "stress_matrix", "nodal_stress"]
+__all__ = ["locate_points", "interpolation_matrix", "stress_matrix", "element_stress_matrix", "nodal_stress"]
 
 
 def locate_points(nodes: np.ndarray, tets: np.ndarray, points: np.ndarray,
@@ -120,7 +120,8 @@ def _stress_coefficients(g: np.ndarray, bary: np.ndarray, lam: float, mu: float)
 
 
 def _rows(S: np.ndarray, tets: np.ndarray, n_dofs: int) -> sp.csr_matrix:
-    """Sparse (6 k, n_dofs) matrix of the coefficients S (k, 6, 10, 3) of elements ``tets`` (k, 10), one row block each."""
+    """Sparse (6 k, n_dofs) matrix of the coefficients S (k, 6, 10, 3) of elements ``tets`` (k, 10), one row block
+    each."""
     k = len(S)
     r = np.broadcast_to(6 * np.arange(k)[:, None, None, None] + np.arange(6)[:, None, None], S.shape)
     c = np.broadcast_to(_point_dofs(tets, np.arange(k))[:, None], S.shape)
@@ -163,6 +164,37 @@ def stress_matrix(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float,
         return _rows(_stress_coefficients(g, bary, lam, mu), tets[elem], n_dofs)
     P, A = nodal_stress(nodes, tets, E, nu, points)
     return (P @ A).tocsr()
+
+
+def element_stress_matrix(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float, elem: np.ndarray,
+                          bary: np.ndarray) -> sp.csr_matrix:
+    """:func:`stress_matrix` (element recovery) at points given by their elements and barycentric coordinates.
+
+    For points whose element is known (the centroids of chosen elements: ``bary`` = 1/4 each), without
+    :func:`locate_points`' search of the whole mesh.
+
+    Parameters
+    ----------
+    nodes : ndarray, (N, 3)
+    tets : ndarray of int, (M, 10)
+    E, nu : float
+        Young's modulus [MPa], Poisson ratio.
+    elem : ndarray of int, (n,)
+        Element of each point.
+    bary : ndarray, (4,) or (n, 4)
+        Barycentric coordinates w.r.t. the vertices 0..3.
+
+    Returns
+    -------
+    scipy.sparse.csr_matrix, (6n, 3N)
+        Rows ``6i + v`` with Voigt order v = xx, yy, zz, yz, xz, xy [MPa per mm].
+    """
+    nodes, tets = _check_mesh(nodes, tets, 10, "tets")
+    elem = np.asarray(elem, dtype=np.int64)
+    lam, mu = lame(E, nu)
+    _, _, g, _ = _affine(nodes, tets[elem])
+    bary = np.broadcast_to(np.asarray(bary, dtype=float), (len(elem), 4))
+    return _rows(_stress_coefficients(g, bary, lam, mu), tets[elem], 3 * len(nodes))
 
 
 def nodal_stress(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float,

@@ -157,6 +157,17 @@ class CylindricalPair:
         nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
         return best * sgn, foot, segi, nrm
 
+    def _signed_distance_rows(self, q: np.ndarray, shape: tuple[int, ...]):
+        """:meth:`_signed_distance` of the points q (n, 2) of a grid ``shape`` (n = prod(shape)), once per row of
+        the grid's last axis when q does not change along it: a spur pair's flank grid (profile x face) meets the
+        gear in the same transverse points at every axial position. The results are the same, row by row."""
+        if len(shape) < 2 or shape[-1] < 2:
+            return self._signed_distance(q)
+        grid = q.reshape(-1, shape[-1], 2)
+        if not (grid == grid[:, :1]).all():
+            return self._signed_distance(q)
+        return tuple(np.repeat(a, shape[-1], axis=0) for a in self._signed_distance(grid[:, 0]))
+
     def separation(self, phi1: float, points: np.ndarray, normals: np.ndarray, side: int = 1) -> Separation:
         """Separation of pinion flank points (pinion frame, (..., 3)) at pinion rotation ``phi1``.
 
@@ -178,7 +189,7 @@ class CylindricalPair:
         k = np.round(np.arctan2(x, y) / pitch).astype(int)
         c, s = np.cos(k * pitch), np.sin(k * pitch)
         q = np.stack([c * x - s * y, s * x + c * y], 1)
-        dist, foot, segi, nrm2 = self._signed_distance(q)
+        dist, foot, segi, nrm2 = self._signed_distance_rows(q, shape)
         gap = dist * self.cos_bb
         face = np.abs(Q[:, 2]) <= 0.5 * self.gear_face_width + 1e-9
         gap = np.where(face, gap, np.inf)

@@ -33,7 +33,7 @@ import numpy as np
 
 from .cache import load_cached, store_cached
 from .section import rot2
-from .segment_gmsh import background_size, fresh_model, mesh_labelled, polyline_distance
+from .segment_gmsh import Polylines, background_size, fresh_model, mesh_labelled
 from .session import gmsh_session
 from .spec import SegmentMesh, outline_hash
 
@@ -299,6 +299,7 @@ def _label(spec: GearBodySpec, volumes: list[int], refs) -> dict[int, str]:
             count[abs(s)] = count.get(abs(s), 0) + 1
     half = 0.5 * spec.face_width
     names = {}
+    curves = Polylines([ref for _, ref in refs])
     for s, n in count.items():
         if n != 1:
             continue
@@ -310,7 +311,7 @@ def _label(spec: GearBodySpec, volumes: list[int], refs) -> dict[int, str]:
             names[s] = "ends" if abs(abs(zc) - half) < 1e-6 * max(1.0, half) else "body_faces"
             continue
         p = rot2(np.array([[x, y]]), -spec.lead_twist * zc)[0]
-        dist = [polyline_distance(p, ref) for _, ref in refs]
+        dist = curves.distance(p)
         i = int(np.argmin(dist))
         if dist[i] > 2e-2:
             raise RuntimeError(f"surface {s} matches no transverse curve (distance {dist[i]:.3g} mm)")
@@ -384,6 +385,7 @@ _SLOPE = 0.6
 #: the read fillets' sizes grow faster into the body: the root stress needs small elements within about a fillet
 #: element of the surface (issue 18), and the slope 0.6 of the flanks would fill the tooth root with them
 _FILLET_SLOPE = 1.0
-_OPTIONS = {"Geometry.ExtrudeSplinePoints": 5, "General.NumThreads": 1, "Mesh.MeshSizeFromPoints": 0, "Mesh.MeshSizeExtendFromBoundary": 0,
+_OPTIONS = {"Geometry.ExtrudeSplinePoints": 5, "General.NumThreads": 1, "Mesh.MeshSizeFromPoints": 0,
+            "Mesh.MeshSizeExtendFromBoundary": 0,
             "Mesh.MeshSizeFromCurvature": 0, "Mesh.SecondOrderLinear": 1, "Mesh.Algorithm": 6,
             "Mesh.Algorithm3D": 1, "Mesh.Optimize": 1, "Mesh.ElementOrder": 1}

@@ -22,13 +22,14 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from fem.readout import stress_matrix
+from fem.readout import element_stress_matrix
 from geometry.cylindrical import flank_point_normal
 from geometry.pair import rotation_z
 
 from .loaded import PositionResult, weights_of
 from .loaded_model import LoadedModel
 from .results import flank_lattice, pressure_on_lattice, roll_step
+from .vtu import write_vtu_file
 
 __all__ = ["select_steps", "write_series", "stress_fields"]
 
@@ -75,7 +76,7 @@ class _Body:
         used = np.unique(tets[keep])
         self.nodes = used
         self.tets = np.searchsorted(used, tets[keep]).astype(np.int32)
-        self.S = stress_matrix(nodes, tets, young, poisson, c[keep])
+        self.S = element_stress_matrix(nodes, tets, young, poisson, keep, np.full(4, 0.25))
 
     def displacements(self, grid_forces: np.ndarray) -> np.ndarray:
         """Displacements (n_dofs, k) of the whole body for grid forces (n_grid, k), one back-substitution."""
@@ -94,7 +95,7 @@ class _Body:
                                        "displacement_magnitude_um": mag.astype(np.float32)},
                            cell_data={"von_mises_mpa": [vm.astype(np.float32)],
                                       "principal_stress_mpa": [principal.astype(np.float32)]})
-        meshio.write(str(path), mesh, file_format="vtu", binary=True)
+        write_vtu_file(path, mesh)
 
 
 def _flank_surface(lm: LoadedModel, step: float) -> tuple[np.ndarray, np.ndarray]:
@@ -146,8 +147,8 @@ def write_series(out: Path, lm: LoadedModel, results: list[PositionResult], torq
         peaks.append(float(p.max(initial=0.0)))
         R, t = frame1[:3, :3], frame1[:3, 3]
         f = f"paraview_flank_{j:03d}.vtu"
-        meshio.write(str(out / f), meshio.Mesh((pts @ R.T + t).astype(np.float32), [("quad", quads.astype(np.int32))],
-                                              cell_data={"contact_pressure_mpa": [p]}), file_format="vtu", binary=True)
+        write_vtu_file(out / f, meshio.Mesh((pts @ R.T + t).astype(np.float32), [("quad", quads.astype(np.int32))],
+                                            cell_data={"contact_pressure_mpa": [p]}))
         names.append(f)
         rows += [f'    <DataSet timestep="{rolls[k]:.6g}" part="{i}" name={quoteattr(n.split("_")[1])} '
                  f'file={quoteattr(n)}/>'

@@ -31,8 +31,8 @@ def plot_data(ds: xr.Dataset) -> dict:
     ``te_ptp`` (torques, ptp arcsec, ptp um); ``load_sharing`` {torque: {pinion tooth: (roll, share)}};
     ``bearing_pattern`` {torque: (flank roll deg, face mm, pressure (profile, face) MPa)} with ``pressure_range``
     (the shared colour scale: the largest flank pressure, edge contact excluded) and ``edge_marks`` {torque: {edge:
-    (profile indices, face indices)}} of edge contact; ``root_stress`` {torque: (roll, pinion MPa, gear MPa)}; ``harmonics``
-    {torque: (mesh orders, amplitude arcsec)}."""
+    (profile indices, face indices)}} of edge contact; ``root_stress`` {torque: (roll, pinion MPa, gear MPa)};
+    ``harmonics`` {torque: (mesh orders, amplitude arcsec)}."""
     ds = _by_torque(ds)
     torques = [float(t) for t in ds.torque.values]
     roll = ds["position"].values
@@ -188,9 +188,11 @@ def write_vtu(path: Path, body, grid_force: np.ndarray, frame: np.ndarray) -> No
     ``grid_force`` (n_grid,) are the cell forces gathered on the body's compliance grid; the load is
     re-applied to the factorised model once (patch loads), so the field is the FE solution itself."""
     import meshio
+
+    from .vtu import write_vtu_file
     u = body.factorization.solve(body.patch @ grid_force).reshape(-1, 3)
     R, t = frame[:3, :3], frame[:3, 3]
     pts = body.mesh.nodes @ R.T + t
-    meshio.write(str(path), meshio.Mesh(pts, [("tetra10", body.mesh.tets)],
-                                        point_data={"displacement_mm": u @ R.T,
-                                                    "displacement_magnitude_um": 1e3 * np.linalg.norm(u, axis=1)}))
+    write_vtu_file(path, meshio.Mesh(pts, [("tetra10", body.mesh.tets)],
+                                     point_data={"displacement_mm": u @ R.T,
+                                                 "displacement_magnitude_um": 1e3 * np.linalg.norm(u, axis=1)}))

@@ -61,29 +61,30 @@ def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = 
         from tqdm import tqdm
         steps = tqdm(steps, desc=f"positions at {torque * 1e-3:g} N m", unit="pos", file=sys.stderr)
     warm = None
-    for k, (r, n) in enumerate(steps):
-        old = store.load(it, k) if store is not None else None
-        if old is not None:
-            warm = old
-            store.taken_over += 1
-            store.dirty = True
-            lines.append(_log_line(lm, torque, warm))
-            out.append(warm)
-            continue
-        # small dense factorisations: one BLAS thread is faster than two fighting for the cores
-        with threadpool_limits(limits=1, user_api="blas"):
+    # small dense factorisations: one BLAS thread is faster than two fighting for the cores (the limit is set once
+    # for the loop: setting it inspects the loaded libraries, ~3 ms a position)
+    with threadpool_limits(limits=1, user_api="blas"):
+        for k, (r, n) in enumerate(steps):
+            old = store.load(it, k) if store is not None else None
+            if old is not None:
+                warm = old
+                store.taken_over += 1
+                store.dirty = True
+                lines.append(_log_line(lm, torque, warm))
+                out.append(warm)
+                continue
             warm = solve_position(lm, float(r), torque, warm=warm, cycle=int(n))
-        out.append(warm)
-        if store is not None:
-            if store.dirty:       # the log of the positions taken over, rewritten once before the first new one
-                store.rewrite_log(lines)
-                store.dirty = False
-            lines.append(_log_line(lm, torque, warm))
-            store.save(it, k, warm, lines[-1])
-            store.computed += 1
-        elif log is not None:
-            with open(log, "a") as fh:
-                fh.write(json.dumps(_log_line(lm, torque, warm)) + "\n")
+            out.append(warm)
+            if store is not None:
+                if store.dirty:       # the log of the positions taken over, rewritten once before the first new one
+                    store.rewrite_log(lines)
+                    store.dirty = False
+                lines.append(_log_line(lm, torque, warm))
+                store.save(it, k, warm, lines[-1])
+                store.computed += 1
+            elif log is not None:
+                with open(log, "a") as fh:
+                    fh.write(json.dumps(_log_line(lm, torque, warm)) + "\n")
     return out
 
 

@@ -27,7 +27,7 @@ ARCSEC_PER_RAD = 180 * 3600 / np.pi   # arcsec per rad
 @dataclass(frozen=True)
 class FlankGaps:
     """Unloaded gaps of pinion flank points of one tooth at one position (arrays of one shape)."""
-    tooth: int
+    tooth: int | np.ndarray  # an array when flank_gaps was given a tooth per point
     r: np.ndarray
     s: np.ndarray
     z: np.ndarray
@@ -43,9 +43,10 @@ class FlankGaps:
     world: np.ndarray        # world frame points
 
 
-def flank_gaps(model: PairModel, phi1: float, tooth: int, s: np.ndarray, z: np.ndarray, side: int = 1,
+def flank_gaps(model: PairModel, phi1: float, tooth, s: np.ndarray, z: np.ndarray, side: int = 1,
                cycle: int = 0) -> FlankGaps:
-    """Gaps at pinion flank arc lengths ``s`` and axial positions ``z`` (broadcast) of ``tooth``.
+    """Gaps at pinion flank arc lengths ``s`` and axial positions ``z`` (broadcast) of ``tooth`` (an int, or an
+    int array of their broadcast shape: a tooth per point).
 
     ``side`` +1 is the drive (right) flank, -1 the coast (left) flank. ``cycle`` counts the mesh
     cycles travelled: the model's teeth then stand for the physical teeth ``tooth - cycle`` of the
@@ -122,42 +123,52 @@ def first_contact(model: PairModel, phi1: float, teeth, ns: int = 240, nz: int =
     The separation field is scanned on an (ns, nz) flank grid per tooth, then the minimum of g/h is
     refined along the profile by two rounds of parabolic interpolation through three points, which
     is exact for the locally quadratic gap of smooth flanks. With ``detail`` also returns the tooth,
-    radius and axial position of the contact and the per-tooth minima."""
+    radius and axial position of the contact and the per-tooth minima.
+
+    Every tooth is scanned and refined in the same array (one :func:`flank_gaps` per step for all teeth: the
+    per-call cost dominated the 3-point refinements)."""
     s, z = scan_grid(model, ns, nz)
+    teeth = np.asarray(list(teeth), int)
+    nt = len(teeth)
+    shape = (nt, ns, nz)
     S, Z = np.meshgrid(s, z, indexing="ij")
-    best, where, per_tooth = np.inf, (0, 0.0, 0.0), []
-    for k in teeth:
-        fg = flank_gaps(model, phi1, int(k), S, Z, side, cycle)
-        ok = np.isfinite(fg.gap) & (fg.lever1 > 0)
-        if not ok.any():
-            per_tooth.append(np.inf)
-            continue
-        q = np.where(ok, fg.gap / np.where(ok, fg.lever1, 1.0), np.inf)
-        i, j = np.unravel_index(np.argmin(q), q.shape)
-        qk, sk = q[i, j], s[i]
-        h = s[1] - s[0]
-        for _ in range(2):
-            trial = np.array([sk - h, sk, sk + h])
-            trial = np.clip(trial, s[0], s[-1])
-            if trial[0] == trial[1] or trial[1] == trial[2]:
-                break
-            f = flank_gaps(model, phi1, int(k), trial, np.full(3, z[j]), side, cycle)
-            qq = f.gap / f.lever1
-            den = qq[0] - 2 * qq[1] + qq[2]
-            if not np.all(np.isfinite(qq)) or den <= 0:
-                break
-            sv = np.clip(sk + 0.5 * h * (qq[0] - qq[2]) / den, s[0], s[-1])
-            fv = flank_gaps(model, phi1, int(k), np.array([sv]), np.array([z[j]]), side, cycle)
-            qv = fv.gap[0] / fv.lever1[0]
-            if np.isfinite(qv) and qv < qk:
-                qk, sk = qv, sv
-            h *= 0.25
-        per_tooth.append(qk)
-        if qk < best:
-            best, where = qk, (int(k), float(np.sqrt(model.pinion.r_base ** 2 + 2 * model.pinion.r_base * sk)),
-                               float(z[j]))
+    fg = flank_gaps(model, phi1, np.broadcast_to(teeth[:, None, None], shape), np.broadcast_to(S, shape),
+                    np.broadcast_to(Z, shape), side, cycle)
+    ok = np.isfinite(fg.gap) & (fg.lever1 > 0)
+    q = np.where(ok, fg.gap / np.where(ok, fg.lever1, 1.0), np.inf).reshape(nt, -1)
+    flat = np.argmin(q, axis=1)
+    i, j = np.unravel_index(flat, (ns, nz))
+    qk, sk, zk = q[np.arange(nt), flat], s[i], z[j]
+    h = np.full(nt, s[1] - s[0]) if ns > 1 else np.zeros(nt)
+    live = ok.reshape(nt, -1).any(axis=1)      # teeth without a gap to close stay at +inf
+    for _ in range(2):
+        trial = np.clip(sk[:, None] + h[:, None] * np.array([-1.0, 0.0, 1.0]), s[0], s[-1])
+        live &= (trial[:, 0] != trial[:, 1]) & (trial[:, 1] != trial[:, 2])
+        idx = np.flatnonzero(live)
+        if not idx.size:
+            break
+        f = flank_gaps(model, phi1, np.broadcast_to(teeth[idx, None], (idx.size, 3)), trial[idx],
+                       np.broadcast_to(zk[idx, None], (idx.size, 3)), side, cycle)
+        qq = f.gap / f.lever1
+        den = qq[:, 0] - 2 * qq[:, 1] + qq[:, 2]
+        good = np.isfinite(qq).all(axis=1) & (den > 0)
+        live[idx[~good]] = False
+        idx, qq, den = idx[good], qq[good], den[good]
+        if idx.size:
+            sv = np.clip(sk[idx] + 0.5 * h[idx] * (qq[:, 0] - qq[:, 2]) / den, s[0], s[-1])
+            fv = flank_gaps(model, phi1, teeth[idx], sv, zk[idx], side, cycle)
+            qv = fv.gap / fv.lever1
+            better = np.isfinite(qv) & (qv < qk[idx])
+            qk[idx[better]], sk[idx[better]] = qv[better], sv[better]
+        h *= 0.25
+    best, where = np.inf, (0, 0.0, 0.0)
+    if nt and np.min(qk) < np.inf:
+        k = int(np.argmin(qk))                  # the first of equal minima, as a scan tooth by tooth
+        best = qk[k]
+        where = (int(teeth[k]), float(np.sqrt(model.pinion.r_base ** 2 + 2 * model.pinion.r_base * sk[k])),
+                 float(zk[k]))
     if detail:
-        return best, where, np.array(per_tooth)
+        return best, where, qk
     return best
 
 
