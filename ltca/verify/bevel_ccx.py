@@ -15,16 +15,20 @@ pinion's rotation read and s the closing sense; our counterpart is :attr:`BevelP
 zone of pair j (refined, and the contact surfaces) is where the unloaded normal gap is below ``cap_refine`` and
 ``cap_contact`` (geometry only, not our loaded solution).
 
-Contact roles.  CalculiX's surface-to-surface contact measures a slave point's overclosure along the normal of
-the master facet it is paired with, so a sharp corner must be a slave against a smooth master that reaches past
-it.  The pinion's top edge (the edge ours reports at phi1 = 0) lies in the pinion's flank band, a slave against
-the gear's whole flank.  The gear's top edge meets the pinion's lower flank: with the pinion band as slave
-there (the first deck), its nodes past the gear's face cone met the extended plane of the gear's last flank facets
-(phi1 = 0, 450 um zone: up to 18 um overclosure, 84 GPa at the pinion's lower flank 1 mm beyond the gear top; the
-pair torques summed to 0.944 of the torque).  So each pair j is split at the gear's tip corner (depth
-``max(corner, 2 h_zone)`` under the gear's face cone, the blank's, :func:`under_top`): ``P`` the pinion band
-beyond that depth (slave) against the gear's flank below it (master), ``W`` the gear's tip-corner zone (slave)
-against the pinion's whole flank (master).  A pair's torque sums both.
+Contact roles and the top edges.  CalculiX's surface-to-surface contact measures a slave point's overclosure
+along the normal of the master facet it is paired with, so a sharp corner is a slave against a smooth master
+that reaches past it.  The pinion's top edge (the edge ours reports at phi1 = 0) lies in the pinion's flank band,
+a slave against the gear's flank.  The gear's top edge meets the pinion's lower flank, so each pair j is split at
+the gear's tip corner (depth ``max(corner, 2 h_zone)`` under the gear's face cone, the blank's,
+:func:`under_top`): ``P`` the pinion band beyond that depth (slave) against the gear's flank below it (master),
+``W`` the gear's tip-corner zone (slave) against the pinion's whole flank (master); a pair's torque sums both.
+Both members' top-edge lines of the wide zone are refined with the zone.  Measured at phi1 = 0, 450 um zone:
+the first deck (pinion band slave everywhere, zone refined only where the gap < ``cap_refine``) had pinion
+nodes 1 mm past the gear's face cone 18 um into the extended plane of the gear's last flank facets (84 GPa, pair
+torques 0.944 of the torque); with the split alone the spike moved to the gear's top-edge nodes on the pinion's
+coarse lower-flank facets (72 GPa at 16 um, nodes 39-99 um from the exact pinion flank unloaded); with the edge
+lines refined the nodal maximum is 2.7 GPa at the pinion's top edge, the gear's corner carries nothing (as
+ours) and the pair torques sum to 0.998 of the torque.
 
 Read per position: theta (arcsec of the gear), each pair's torque share about the pinion axis (total contact
 force of the pair times its pressure centroid), and the peak flank pressure away from the edges (pinion top,
