@@ -101,7 +101,7 @@ def _cmd_validate(a: argparse.Namespace) -> int:
                                         refine=2 if a.refine is None else a.refine, level=a.level,
                                         h0=1e-3 * (a.band or 250.0), freeze=a.freeze,
                                         command=command_line(sys.argv[1:]), progress=not a.quiet,
-                                        torque=a.torque)
+                                        torque=a.torque, threads=a.threads)
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
             return 2
@@ -350,7 +350,8 @@ def build_parser() -> argparse.ArgumentParser:
                         "fillets by 1.5 each (finer, default), coarsen them (coarser) or both (both); the first "
                         "position is frozen at the finest rung")
     v.add_argument("--threads", type=int, default=2,
-                   help="calculix-whole: CalculiX threads (OMP_NUM_THREADS, CCX_NPROC_EQUATION_SOLVER; default 2)")
+                   help="calculix-whole and the bevel calculix check: CalculiX threads (OMP_NUM_THREADS, "
+                        "CCX_NPROC_EQUATION_SOLVER; default 2)")
     v.add_argument("--quiet", action="store_true", help="no progress output")
     v.set_defaults(func=_cmd_validate)
 

@@ -86,9 +86,9 @@ def _ok(e: dict) -> bool:
 
 def run_bevel_validation(case_path: str, fractions=(0.0, 0.4), out: str = "out/validate_bevel_ccx", refine: int = 2,
                          level: int = 1, h0: float = 0.25, freeze: str | None = None, command: str = "",
-                         progress: bool = True, torque: float | None = None) -> int:
+                         progress: bool = True, torque: float | None = None, threads: int = 2) -> int:
     """Ours against CalculiX at pinion angles ``fractions`` x 2 pi / z1 under the pinion ``torque`` (N m; default
-    the case's middle torque); exit status 0 when inside the bounds."""
+    the case's middle torque), CalculiX on ``threads``; exit status 0 when inside the bounds."""
     from fem.calculix.run import ccx_path
     from .whole_check import ccx_version
     ccx_path()
@@ -98,7 +98,7 @@ def run_bevel_validation(case_path: str, fractions=(0.0, 0.4), out: str = "out/v
     case, lm, t_comp = bevel_model(case_path, cache=str(outdir / "cache"), say=say)
     torque = middle_torque(case) if torque is None else float(torque)
     cycle = 2 * np.pi / lm.pair.blank.pinion.z
-    ladder_st = [mounted(st, case, lm) for st in bevel_ladder(max(refine, level) + 1, h0)]
+    ladder_st = [replace(mounted(st, case, lm), threads=threads) for st in bevel_ladder(max(refine, level) + 1, h0)]
 
     def ccx(f, st):
         return solve_bevel_ccx(lm, f * cycle, torque * 1e3, st, outdir / f"ccx_{f:+.3f}_h{1e3 * st.h_zone:.0f}",

@@ -15,10 +15,25 @@ pinion's rotation read and s the closing sense; our counterpart is :attr:`BevelP
 zone of pair j (refined, and the contact surfaces) is where the unloaded normal gap is below ``cap_refine`` and
 ``cap_contact`` (geometry only, not our loaded solution).
 
+Contact roles and the top edges.  CalculiX's surface-to-surface contact measures a slave point's overclosure
+along the normal of the master facet it is paired with, so a sharp corner is a slave against a smooth master
+that reaches past it.  The pinion's top edge (the edge ours reports at phi1 = 0) lies in the pinion's flank band,
+a slave against the gear's flank.  The gear's top edge meets the pinion's lower flank, so each pair j is split at
+the gear's tip corner (depth ``max(corner, 2 h_zone)`` under the gear's face cone, the blank's,
+:func:`under_top`): ``P`` the pinion band beyond that depth (slave) against the gear's flank below it (master),
+``W`` the gear's tip-corner zone (slave) against the pinion's whole flank (master); a pair's torque sums both.
+Both members' top-edge lines of the wide zone are refined with the zone.  Measured at phi1 = 0, 450 um zone:
+the first deck (pinion band slave everywhere, zone refined only where the gap < ``cap_refine``) had pinion
+nodes 1 mm past the gear's face cone 18 um into the extended plane of the gear's last flank facets (84 GPa, pair
+torques 0.944 of the torque); with the split alone the spike moved to the gear's top-edge nodes on the pinion's
+coarse lower-flank facets (72 GPa at 16 um, nodes 39-99 um from the exact pinion flank unloaded); with the edge
+lines refined the nodal maximum is 2.7 GPa at the pinion's top edge, the gear's corner carries nothing (as
+ours) and the pair torques sum to 0.998 of the torque.
+
 Read per position: theta (arcsec of the gear), each pair's torque share about the pinion axis (total contact
 force of the pair times its pressure centroid), and the peak flank pressure away from the edges (pinion top,
-gear top, toe and heel: farther than ``edge_mm``, :func:`interior`), from a quadratic fit of p^2 (the elliptic Hertz shape)
-around the highest node.  Runs are kept in their folder with ``result.json`` keyed by the deck's SHA-256.
+gear top, toe and heel: farther than ``edge_mm``, :func:`interior`), from a quadratic fit of p^2 (the elliptic
+Hertz shape) around the highest node.  Runs are kept in their folder with ``result.json`` keyed by the deck's SHA-256.
 """
 from __future__ import annotations
 
@@ -40,7 +55,7 @@ from ..bevel.cells import pair_minima
 from ..bevel.model import LOADED, BevelLoadedModel
 from .calculix import penalty_slope
 
-__all__ = ["BevelCcxSettings", "BevelCcxResult", "solve_bevel_ccx", "bevel_ladder", "interior"]
+__all__ = ["BevelCcxSettings", "BevelCcxResult", "solve_bevel_ccx", "bevel_ladder", "interior", "under_top"]
 
 
 @dataclass(frozen=True)
@@ -58,6 +73,7 @@ class BevelCcxSettings:
     back_depth: float = 1.2
     back_face_z: float | None = None  # the gear's back face (mounting distance, mm); None: back_depth below the heel
     edge_mm: float = 0.8
+    corner: float = 0.25              # least depth of the gear's tip-corner zone under its face cone
     threads: int = 2
 
 
@@ -106,20 +122,26 @@ def _outline(lm: BevelLoadedModel, member: str, st: BevelCcxSettings) -> tuple[n
 
 
 def _zones(lm: BevelLoadedModel, phi1: float, g_min: float, ang2: float, cap: float) -> dict:
-    """Per pair j: pinion points (pinion frame, tooth j) and gear points (gear frame) with gap < cap."""
+    """Per pair j: pinion points (pinion frame, tooth j) and gear points (gear frame) with gap < cap, and the
+    top-edge lines among them (the pinion's top row, the gear's top line on the pinion: the lowest row over the gear
+    flank), which are refined too."""
     gp = lm.gaps
     T, L = np.meshgrid(np.linspace(0.0, 1.0, 61), np.linspace(*gp.L_range, 161), indexing="ij")
     B1, O1, B2, O2 = mesh_frames(lm.pair.blank, lm.asm)
     out = {}
     for j in LOADED:
         r = gp.gaps(phi1 + j * gp.c1, T, L)
-        m = np.isfinite(r.g) & ((r.g - g_min) * r.v2 < cap)
+        over = np.isfinite(r.g)
+        m = over & ((r.g - g_min) * r.v2 < cap)
         if not m.any():
             continue
+        edge = np.zeros_like(m)
+        edge[-1] = True
+        edge[np.argmax(over, axis=0), np.arange(T.shape[1])] = True
         p1 = r.r1[m] @ _rz(j * gp.c1).T                     # tooth j in the pinion body frame
         h = (p1 @ _rz(phi1).T) @ B1.T + O1
         p2 = ((h - O2) @ B2) @ _rz(ang2)                     # into the gear body frame at its angle ang2
-        out[j] = (p1, p2)
+        out[j] = (p1, p2, edge[m])
     return out
 
 
@@ -139,10 +161,22 @@ def _member(lm, member: str, st: BevelCcxSettings, zone: np.ndarray, snap: tuple
     return build_bevel_solid(spec, say), spec
 
 
+def _centroids(mesh, tri: np.ndarray) -> np.ndarray:
+    return mesh.nodes[tri[:, :3]].mean(axis=1)
+
+
+def under_top(bl, member: str, X: np.ndarray) -> np.ndarray:
+    """Depth of body-frame points X (mm) under ``member``'s face cone (the blank's, not our model's), mm; negative
+    beyond its top."""
+    mb = bl.member(member)
+    L, Rn = to_pitch_coords(X, mb.pitch_angle)
+    return mb.addendum - (bl.outer_cone_distance - L) * np.tan(mb.addendum_angle) - Rn
+
+
 def _near(mesh, group: str, pts: np.ndarray, halo: float) -> np.ndarray:
     from scipy.spatial import cKDTree
     tri = mesh.facets[group]
-    d = cKDTree(pts).query(mesh.nodes[tri[:, :3]].mean(axis=1))[0]
+    d = cKDTree(pts).query(_centroids(mesh, tri))[0]
     return tri[d < halo]
 
 
@@ -159,20 +193,35 @@ def solve_bevel_ccx(lm: BevelLoadedModel, phi1: float, torque1: float, st: Bevel
     wide = _zones(lm, phi1, g_min, ang2, st.cap_contact)
     pairs_j = sorted(fine)
     say(f"bevel CalculiX phi1 {phi1:+.5f} rad, zone {1e3 * st.h_zone:.0f} um: pairs {pairs_j} in the contact zone")
-    m1, s1 = _member(lm, "pinion", st, np.vstack([fine[j][0] for j in pairs_j]), tuple(pairs_j), cache, say)
-    m2, s2spec = _member(lm, "gear", st, np.vstack([fine[j][1] for j in pairs_j]), tuple(-j for j in pairs_j),
-                         cache, say)
-    f1, f2, pairs = dict(m1.facets), dict(m2.facets), []
-    for j in pairs_j:
-        f1[f"c{j}"] = _near(m1, f"flank_{j}_{lm.side}", wide[j][0], 3 * st.h_zone)
-        f2[f"c{j}"] = _near(m2, f"flank_{-j}_{gp.gear_side}", wide[j][1], 3 * st.h_zone + 0.5)
-        pairs.append(ContactPairSpec(f"P{j + 1}", ("pinion", (f"c{j}",)), ("gear", (f"c{j}",))))
-    m1 = type(m1)(m1.nodes, m1.tets, f1, m1.spec_hash, m1.seconds)
-    m2 = type(m2)(m2.nodes, m2.tets, f2, m2.spec_hash, m2.seconds)
+    # refined: the fine zone and the top-edge lines of the wide one (a corner on the other member's coarse chords
+    # meets facets that stand proud of its curved flank)
+    zone = [np.vstack([fine[j][i] for j in pairs_j] + [wide[j][i][wide[j][2]] for j in pairs_j]) for i in (0, 1)]
+    m1, s1 = _member(lm, "pinion", st, zone[0], tuple(pairs_j), cache, say)
+    m2, s2spec = _member(lm, "gear", st, zone[1], tuple(-j for j in pairs_j), cache, say)
     B1, O1, B2, O2 = mesh_frames(bl, lm.asm)
     delta = st.preload_arcsec * RAD_PER_ARCSEC / ratio                  # pinion overclosure, rad
     T1 = _frame(_rz(phi1 + s2 * delta))
     T2 = _frame(B1.T @ B2 @ _rz(ang2), B1.T @ (O2 - O1))
+    # the gear in the pinion's body frame at the deck angles (T1^-1 T2): where the pinion's facets lie under its top
+    G12 = np.linalg.inv(T1) @ T2
+    f1, f2, pairs, owner = dict(m1.facets), dict(m2.facets), [], []
+    groups, depth = {"pinion": f1, "gear": f2}, max(st.corner, 2.0 * st.h_zone)
+    for j in pairs_j:
+        band1 = _near(m1, f"flank_{j}_{lm.side}", wide[j][0], 3 * st.h_zone)
+        band2 = _near(m2, f"flank_{-j}_{gp.gear_side}", wide[j][1], 3 * st.h_zone + 0.5)
+        corner2 = under_top(bl, "gear", _centroids(m2, band2)) < depth
+        X1 = (_centroids(m1, band1) - G12[:3, 3]) @ G12[:3, :3]          # pinion facets in the gear frame
+        # masters: the whole flank (a slave point past a master's border would meet the plane of its last facet)
+        whole2 = m2.facets[f"flank_{-j}_{gp.gear_side}"]
+        f1[f"c{j}"], f2[f"c{j}"] = band1[under_top(bl, "gear", X1) >= depth], whole2[under_top(bl, "gear", _centroids(
+            m2, whole2)) >= depth]
+        f1[f"w{j}"], f2[f"w{j}"] = m1.facets[f"flank_{j}_{lm.side}"], band2[corner2]
+        for name, sl, ma, key in ((f"P{j + 1}", "pinion", "gear", f"c{j}"), (f"W{j + 1}", "gear", "pinion", f"w{j}")):
+            if len(groups[sl][key]) and len(groups[ma][key]):
+                pairs.append(ContactPairSpec(name, (sl, (key,)), (ma, (key,))))
+                owner.append(j)
+    m1 = type(m1)(m1.nodes, m1.tets, f1, m1.spec_hash, m1.seconds)
+    m2 = type(m2)(m2.nodes, m2.tets, f2, m2.spec_hash, m2.seconds)
     deck = CcxDeck(young=lm.bodies.young, poisson=lm.bodies.poisson, fixed=("gear", "back"),
                    driven=("pinion", "bore"), moment=s2 * torque1, pairs=tuple(pairs),
                    penalty=penalty_slope(st.h_zone, st.penalty_factor, lm.bodies.young))
@@ -195,25 +244,28 @@ def solve_bevel_ccx(lm: BevelLoadedModel, phi1: float, torque1: float, st: Bevel
     wall = run_ccx(work / "job.inp", threads=st.threads)
     res = read_results(work / "job", ids["rot"], tuple(p.name for p in pairs))
     theta = ratio * (delta + s2 * res.rotation)
-    # torque share about the pinion axis: pair force at its pressure centroid; interior peak pressure
-    X = m1.nodes @ T1[:3, :3].T
+    # torque share about the pinion axis: each pair's force at its pressure centroid (the gear-slave corner pair's
+    # force acts on the gear: its reaction on the pinion); interior peak pressure on the pinion's flank
+    n1 = len(m1.nodes)
+    X = np.vstack([m1.nodes @ T1[:3, :3].T, m2.nodes @ T2[:3, :3].T + T2[:3, 3]])
     idx = res.contact_nodes - 1
-    ok = (idx >= 0) & (idx < len(m1.nodes)) & (res.contact_pressure > 0)
+    ok = (idx >= 0) & (idx < len(X)) & (res.contact_pressure > 0)
     idx, p = idx[ok], res.contact_pressure[ok]
-    torques, forces, peaks, pmax = {}, {}, [], 0.0
-    for j, pr in zip(pairs_j, pairs):
-        on = np.isin(idx, np.unique(f1[f"c{j}"]))
-        F = np.asarray(res.pair_force.get(pr.name, np.zeros(3)))
-        forces[j] = float(np.linalg.norm(F))
-        if not on.any() or forces[j] == 0.0:
-            torques[j] = 0.0
-            continue
-        c = (p[on, None] * X[idx[on]]).sum(0) / p[on].sum()
-        torques[j] = abs(float(np.cross(c, F)[2]))
-        pmax = max(pmax, float(p[on].max()))
-        keep = on & _interior(lm, X[idx], T2, st.edge_mm)
+    torques, forces, peaks = {j: 0.0 for j in pairs_j}, {j: 0.0 for j in pairs_j}, []
+    for j, pr in zip(owner, pairs):
+        gear_slave = pr.slave[0] == "gear"
+        on = np.isin(idx, np.unique(groups[pr.slave[0]][pr.slave[1][0]]) + (n1 if gear_slave else 0))
+        F = np.asarray(res.pair_force.get(pr.name, np.zeros(3))) * (-1.0 if gear_slave else 1.0)
+        forces[j] += float(np.linalg.norm(F))
+        if on.any() and np.linalg.norm(F) > 0.0:
+            c = (p[on, None] * X[idx[on]]).sum(0) / p[on].sum()
+            torques[j] += float(np.cross(c, F)[2])
+        keep = on & (idx < n1)
+        keep[keep] = _interior(lm, X[idx[keep]], T2, st.edge_mm)
         if keep.any():
             peaks.append(_fit_peak(m1.nodes[idx[keep]], p[keep], 2.5 * st.h_zone))
+    torques = {j: abs(v) for j, v in torques.items()}
+    pmax = float(p.max()) if p.size else 0.0
     tot = sum(torques.values()) or 1.0
     out = BevelCcxResult(float(phi1), theta / RAD_PER_ARCSEC, {j: v / tot for j, v in torques.items()}, forces,
                          max(peaks, default=0.0), pmax, time.perf_counter() - t_all,
