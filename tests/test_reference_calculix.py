@@ -51,6 +51,9 @@ QUANTITIES = tuple(BOUNDS)
 #: quantities whose read-out changed after the references were frozen (issue 18: the root stress); their
 #: ``ours_at_freeze`` no longer marks an xfail
 ROOT_REMEASURED = ("root_pinion", "root_gear")
+#: a file whose case costs more than this (s) for our compliance at the default fidelity (``ours_compliance_wall_s``,
+#: measured when it was frozen) has its comparisons marked slow: the fast suite's budget (helical C14: 88 s)
+SLOW_COMPLIANCE_S = 60.0
 _LM: dict = {}
 _OURS: dict = {}
 
@@ -101,25 +104,32 @@ def deviation(quantity: str, ours: dict, ref: dict) -> float:
 def _cases():
     out = []
     for path in REFERENCES:
-        for i, ref in enumerate(_rec(path)["positions"]):
+        rec = _rec(path)
+        slow = [pytest.mark.slow] if rec.get("ours_compliance_wall_s", 0.0) > SLOW_COMPLIANCE_S else []
+        for i, ref in enumerate(rec["positions"]):
             for q in QUANTITIES:
                 if _reference_value(ref, q) is None:
                     continue
-                marks = []
+                marks = list(slow)
                 then = ref.get("ours_at_freeze")
-                if then is not None and q not in ROOT_REMEASURED and deviation(q, then, ref) > BOUNDS[q]:
+                if q in rec.get("unconverged", {}):      # CalculiX's own ladder moved it beyond the bound
+                    marks.append(pytest.mark.skip(reason=f"not applicable: {rec['unconverged'][q]}"))
+                elif then is not None and q not in ROOT_REMEASURED and deviation(q, then, ref) > BOUNDS[q]:
                     shown = (f"{then[q]} vs {ref[q]}" if q == "share" else
                              f"{then[q]:.4g} vs {_reference_value(ref, q):.4g} "
                              f"({100 * (then[q] / _reference_value(ref, q) - 1):+.1f} %)")
-                    marks = [pytest.mark.xfail(strict=True, reason=f"{q} at roll {ref['roll_deg']:g} deg: ours "
-                                                                   f"{shown}, outside {BOUNDS[q]} (when frozen)")]
+                    marks.append(pytest.mark.xfail(strict=True, reason=f"{q} at roll {ref['roll_deg']:g} deg: ours "
+                                                                       f"{shown}, outside {BOUNDS[q]} (when frozen)"))
                 out.append(pytest.param(path, i, q, marks=marks, id=f"{path.stem}-{ref['roll_deg']:g}-{q}"))
     return out
 
 
 @pytest.mark.parametrize("path", REFERENCES, ids=lambda p: p.stem)
 def test_reference_records_its_provenance(path):
+    from ltca.case import load_case
     rec = _rec(path)
+    case = load_case(ROOT / rec["case"])
+    face_width = min(case.pinion.face_width, case.gear.face_width)     # as the model's (no compliance needed)
     assert "Version" in rec["calculix_version"]
     assert rec["command"].startswith("ltca validate --reference calculix-whole")
     assert len(rec["convergence"]) >= 2, "a frozen reference needs its contact-band refinement"
@@ -132,7 +142,7 @@ def test_reference_records_its_provenance(path):
             assert set(p["root_stress"]) == {"pinion", "gear"} and p["flank_pressure"] > 0
             for member in p["root_stress"].values():
                 assert member["max"] == max(member["per_tooth"].values()) > 0
-                assert abs(member["at"]["z_mm"]) <= 0.45 * _lm(path)[0].model.face_width + 1e-9
+                assert abs(member["at"]["z_mm"]) <= 0.45 * face_width + 1e-9
                 assert member["surface"]["max"] > 0
 
 
