@@ -52,8 +52,9 @@ QUANTITIES = tuple(BOUNDS)
 #: ``ours_at_freeze`` no longer marks an xfail
 ROOT_REMEASURED = ("root_pinion", "root_gear")
 #: a file whose case costs more than this (s) for our compliance at the default fidelity (``ours_compliance_wall_s``,
-#: measured when it was frozen) has its comparisons marked slow: the fast suite's budget (helical C14: 88 s)
-SLOW_COMPLIANCE_S = 60.0
+#: measured when it was frozen) has its comparisons marked slow, for the fast suite's budget: FZG C14 15 s stays,
+#: helical C14 (45-90 s on the busy 2-core machine) is slow
+SLOW_COMPLIANCE_S = 30.0
 #: the CalculiX TE of a frozen reference changes by less than this over its ladder's last refinement
 TE_CONVERGED = 0.005
 _LM: dict = {}
