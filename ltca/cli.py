@@ -125,7 +125,8 @@ def _cmd_validate(a: argparse.Namespace) -> int:
                                         refine=1 if a.refine is None else a.refine,
                                         fidelity=a.fidelity or "default", freeze=a.freeze,
                                         command=command_line(sys.argv[1:]), progress=not a.quiet,
-                                        threads=a.threads, ladder=a.ladder)
+                                        threads=a.threads, ladder=a.ladder,
+                                        body="coarse" if a.coarse_body else "default")
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
             return 2
@@ -331,7 +332,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="CalculiX contact-band element size at rung 0, um (default 3/4 of the Hertz half-width)")
     v.add_argument("--coarse-body", action="store_true",
                    help="CalculiX elements of our coarse fidelity away from the contact band (0.45 x module on "
-                        "the flank, 1.6 x module in the body)")
+                        "the flank, 1.6 x module in the body; calculix-whole: flanks with a contact line 0.45, other "
+                        "teeth 0.75, body 1.6, loaded fillets 0.225 x module, the band's growth x 1.5: a wide face)")
     v.add_argument("--pressure-ladder", choices=["auto", "all", "none"], default="auto",
                    help="where CalculiX refines a mid-face window of the narrowest contact three times for a "
                         "converged peak pressure: auto (positions whose narrowest contact has < 3 band elements per "

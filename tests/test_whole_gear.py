@@ -166,3 +166,23 @@ def test_calculix_whole_argument_errors_before_ccx(tmp_path, capsys):
     rc = main(["validate", "--reference", "calculix-whole", "--case", str(CASES / "fzg_c14.toml"),
                "--positions", "40", "--out", str(tmp_path)])
     assert rc == 2 and "--positions" in capsys.readouterr().err
+
+
+def test_coarse_body_and_unconverged_readouts():
+    """``--coarse-body`` coarsens only away from the contact band (same band, penalty and halo); a frozen reference
+    names a read-out its ladder moves by more than 5 % (issue 18), with the numbers."""
+    from types import SimpleNamespace
+
+    from ltca.verify.whole_check import unconverged
+    from ltca.verify.whole_gear import whole_settings
+    d, c = whole_settings(0.118, 4.23, 150.0, threads=1), whole_settings(0.118, 4.23, 150.0, threads=1, body="coarse")
+    assert (c.h_contact, c.half_band, c.penalty, c.halo) == (d.h_contact, d.half_band, d.penalty, d.halo)
+    assert c.h_flank > d.h_flank and c.h_tooth > d.h_tooth and c.h_body > d.h_body and c.h_fillet > d.h_fillet
+    assert c.fine_lines_only and not d.fine_lines_only
+
+    def run(h, p, s1, s2):
+        return SimpleNamespace(roll_deg=0.0, info={"h_contact_mm": h, "p_flank": p},
+                               root={"pinion": {"max": s1}, "gear": {"max": s2}})
+    bad = unconverged([run(0.225, 900.0, 70.0, 70.0), run(0.15, 1000.0, 72.0, 74.0)])
+    assert set(bad) == {"flank_pressure", "root_gear"} and "900.0 -> 1000.0 MPa (+11.1 %)" in bad["flank_pressure"]
+    assert unconverged([run(0.15, 1000.0, 72.0, 74.0)]) == {}

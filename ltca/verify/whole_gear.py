@@ -56,8 +56,8 @@ from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact
 from .calculix import _fitted_peak, contact_lines, penalty_slope
 from .whole_root import Member, fillet_stress
 
-__all__ = ["WholeSettings", "WholeResult", "whole_settings", "solve_whole", "stiffness", "FLANK_SLICES", "CORNER",
-           "wheel_corner_zone", "tooth_loads"]
+__all__ = ["WholeSettings", "WholeResult", "whole_settings", "BODIES", "solve_whole", "stiffness", "FLANK_SLICES",
+           "CORNER", "wheel_corner_zone", "tooth_loads"]
 
 CORNER = 0.25   # mm: least radial depth of an internal wheel's tip-corner zone (wheel_corner_zone)
 
@@ -80,14 +80,25 @@ class WholeSettings:
     fine_lines_only: bool = False   # h_flank only on the teeth with a contact line (else every tooth in the model)
 
 
+#: element sizes (x module) of the loaded teeth's flanks, the other teeth, the body and the loaded teeth's fillets, the
+#: growth of the contact band's sizes (x WholeSettings') and whether only the teeth with a contact line get the flank
+#: size. "coarse" (``--coarse-body``): a wide face whose default deck is too large for one thread (helical C14, b = 40
+#: mm: 300 k nodes at the default, 125-155 k coarse at a 225-150 um band)
+BODIES = {"default": dict(flank=0.3, tooth=0.5, body=1.2, fillet=0.15, grow=1.0, lines_only=False),
+          "coarse": dict(flank=0.45, tooth=0.75, body=1.6, fillet=0.225, grow=1.5, lines_only=True)}
+
+
 def whole_settings(b_nom: float, module: float, band_um: float | None = None, threads: int = 2,
-                   fillet_mm: float | None = None) -> WholeSettings:
-    """Settings with a contact band of ``band_um`` (default 3/4 of the nominal Hertz half-width ``b_nom``) and
-    tension-side fillets of ``fillet_mm`` (default 0.15 module) on the loaded teeth."""
+                   fillet_mm: float | None = None, body: str = "default") -> WholeSettings:
+    """Settings with a contact band of ``band_um`` (default 3/4 of the nominal Hertz half-width ``b_nom``),
+    tension-side fillets of ``fillet_mm`` on the loaded teeth (default ``BODIES[body]``, 0.15 module) and the other
+    element sizes of ``BODIES[body]``."""
     h = band_um * 1e-3 if band_um else 0.75 * b_nom
-    return WholeSettings(h_contact=h, half_band=1.3 * b_nom + h, h_flank=0.3 * module, h_tooth=0.5 * module,
-                         h_body=1.2 * module, penalty=penalty_slope(h), halo=2.0 * b_nom, threads=threads,
-                         h_fillet=fillet_mm or 0.15 * module)
+    k = BODIES[body]
+    return WholeSettings(h_contact=h, half_band=1.3 * b_nom + h, h_flank=k["flank"] * module,
+                         h_tooth=k["tooth"] * module, h_body=k["body"] * module, penalty=penalty_slope(h),
+                         grow_across=0.4 * k["grow"], grow_depth=0.8 * k["grow"], halo=2.0 * b_nom, threads=threads,
+                         h_fillet=fillet_mm or k["fillet"] * module, fine_lines_only=k["lines_only"])
 
 
 @dataclass
