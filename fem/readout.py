@@ -156,12 +156,8 @@ def stress_matrix(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float,
     nodes, tets = _check_mesh(nodes, tets, 10, "tets")
     if recovery not in ("element", "nodal"):
         raise ValueError(f"recovery = {recovery!r} must be 'element' or 'nodal'")
-    lam, mu = lame(E, nu)
-    elem, bary = locate_points(nodes, tets, points)
-    n_dofs = 3 * len(nodes)
     if recovery == "element":
-        _, _, g, _ = _affine(nodes, tets[elem])
-        return _rows(_stress_coefficients(g, bary, lam, mu), tets[elem], n_dofs)
+        return element_stress_matrix(nodes, tets, E, nu, *locate_points(nodes, tets, points))
     P, A = nodal_stress(nodes, tets, E, nu, points)
     return (P @ A).tocsr()
 
