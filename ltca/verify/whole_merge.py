@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from .calculix import penalty_slope
-from .whole_check import CONVERGED, _entry, _finite, ccx_version, ours_figures
+from .whole_check import CONVERGED, FLANK_AT, _entry, _finite, ccx_version, ours_figures
 from .whole_gear import solve_whole, whole_settings
 
 __all__ = ["run_whole_merge", "ladder_key", "rung_settings", "ladder_change"]
@@ -112,6 +112,7 @@ def run_whole_merge(case_path: str, positions: list[float], out: str, merge: str
     for rd in rolls:
         _check_body(base, rec["positions"][frozen[ladder_key(rd)]], rd)
     ladders = rec.setdefault("ladders", {})
+    rec.setdefault("definitions", {}).setdefault("flank_at", FLANK_AT)
     lines = [f"{case.name} at {torque * 1e-3:g} N m: frozen positions refined by {refine} rung(s) of 1.5 "
              "(band, fillet -> TE, stiffness, flank peak, root stress pinion / gear, nodes, ccx s); ours at the end"]
     for rd in rolls:
