@@ -20,10 +20,20 @@ bound. Our compliance of each file's case (default fidelity) is computed once pe
 loaded transition near the inner point of single contact B: rigid B at -6.25 deg, loaded single contact from
 about -4.9 deg; the gear's highest point of single contact, where its root stress peaks). Contact band 150 um
 (0.75 of the nominal Hertz half-width), the tension-side fillets of the loaded teeth 0.675 mm (0.15 module);
-at 0 deg the ladder 225 / 150 / 100 um band with 1.0 / 0.675 / 0.45 mm fillets, 0 deg frozen at its finest.
-Its strict xfails: the flank peak at -9 and -4.5 deg, where CalculiX's 150 um band does not resolve the
-contact (at -9 deg the pinion's contact near its root has a Hertz half-width of about 127 um: one element;
-at 0 deg the ladder gives 1722 / 1506 / 1434 MPa, Richardson 1398, ours 1387). The pinion's root stress was a strict
+at 0 deg the ladder 225 / 150 / 100 um band with 1.0 / 0.675 / 0.45 mm fillets, 0 deg frozen at its finest;
+-4.5 deg refined to 100 um / 0.45 mm by ``--merge`` (``ltca.verify.whole_merge``; its ladder under ``ladders``).
+The flank peak is like with like at these positions: neither solver has edge contact there (CalculiX's
+``max_pressure`` over all slices equals its inner-slice ``flank_pressure``; ours has no tip edge or form circle
+loaded), both peaks are the Hertzian contact of the same flank point. At 0 deg CalculiX 1722 / 1506 / 1434 MPa
+over the ladder, Richardson 1398 (order 2.7), ours 1387; local Hertz with our largest slice line load 1370. At
+-4.5 deg CalculiX 1612 / 1507 MPa at 150 / 100 um (122 k / 166 k nodes, ccx 648 / 1837 s; TE 117.68 / 117.47
+arcsec, -0.18 %), at pinion tooth 0, r 35.68 mm, z +5.5 mm (ours r 35.67 mm, z +2.5 mm), ours 1442 MPa (-4.3 %):
+within 5 %, though the last step still moves -6.5 % (with the 0 deg order about 1455 converged); local Hertz
+1430 MPa (our largest slice line load 434 N/mm, R 7.65 mm; b 193 um), GEARpie's rigid sharing (single contact
+there) 1410 MPa. Strict xfail: the flank peak at -9 deg (double contact), frozen at 150 um where CalculiX does not
+resolve the contact: the pinion's contact near its root (r 34.9 mm, our share 0.527) has a Hertz half-width of
+about 128 um, one element; CalculiX 1465 MPa, ours 1128 (-23 %), local Hertz 1126 (our largest slice line load
+229 N/mm, R 6.52 mm), GEARpie's rigid sharing (0.5 each) 1081 MPa. The pinion's root stress was a strict
 xfail at every position when frozen (ours then 253.1 / 168.9 / 244.5 MPa at 0 / -9 / -4.5 deg, +9.4 / +5.4 /
 +7.8 %): not converged (ours at 0 deg coarse / default / fine 219.9 / 253.1 / 242.0 MPa) because 1.35 mm elements
 on a 2 mm fillet were read 0.05 mm inside (chord sagitta 0.11 mm) with the stress of the one element there, at
