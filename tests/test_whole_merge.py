@@ -44,8 +44,9 @@ def test_rung_settings_and_ladder_change():
 
 
 def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch):
-    """Merging -4.5 deg replaces that position by its refined run with our figures and keeps its ladder (the frozen
-    run first); the first position's ladder, the other positions and the original command stay."""
+    """Merging -4.5 deg replaces that position by its run one rung finer than its frozen one, with our figures, and
+    extends its ladder (the frozen run before it); the first position's ladder, the other positions and the original
+    command stay."""
     import fem.calculix.run
     from ltca.verify import whole_merge
     from ltca.verify.whole_gear import WholeResult
@@ -71,10 +72,14 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     i = next(i for i, p in enumerate(before["positions"]) if p["roll_deg"] == -4.5)
     assert [p for j, p in enumerate(after["positions"]) if j != i] == [p for j, p in enumerate(before["positions"])
                                                                        if j != i]
+    prior = before.get("ladders", {}).get("-4.5") or [{k: v for k, v in before["positions"][i].items()
+                                                        if k != "ours_at_freeze"}]
     ladder = after["ladders"]["-4.5"]
-    assert ladder[0] == {k: v for k, v in before["positions"][i].items() if k != "ours_at_freeze"}
-    assert round(ladder[1]["h_contact_um"]) == 100 and ladder[1]["flank_pressure"] == 1500.0
+    assert ladder[:-1] == prior and ladder[-2] == {k: v for k, v in before["positions"][i].items()
+                                                   if k != "ours_at_freeze"}
+    assert ladder[-1]["h_contact_um"] == pytest.approx(prior[-1]["h_contact_um"] / 1.5)
+    assert ladder[-1]["flank_pressure"] == 1500.0
     new = after["positions"][i]
-    assert {k: v for k, v in new.items() if k != "ours_at_freeze"} == ladder[1]
+    assert {k: v for k, v in new.items() if k != "ours_at_freeze"} == ladder[-1]
     assert set(new["ours_at_freeze"]) == {"te", "stiffness", "share", "flank_pressure", "root_pinion", "root_gear"}
     assert after["merged"][-1]["positions"] == ["-4.5"] and after["merged"][-1]["refine"] == 1
