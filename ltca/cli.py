@@ -117,6 +117,18 @@ def _cmd_validate(a: argparse.Namespace) -> int:
         except CcxNotFound as exc:
             print(f"ltca validate: {exc}", file=sys.stderr)
             return 2
+    if a.reference == "calculix-whole" and a.merge:
+        from fem.calculix.run import CcxNotFound
+        from .verify.whole_check import command_line
+        from .verify.whole_merge import run_whole_merge
+        try:
+            return run_whole_merge(a.case, a.positions, a.out, a.merge, refine=1 if a.refine is None else a.refine,
+                                   fidelity=a.fidelity or "default", command=command_line(sys.argv[1:]),
+                                   progress=not a.quiet, threads=a.threads,
+                                   body="coarse" if a.coarse_body else "default")
+        except CcxNotFound as exc:
+            print(f"ltca validate: {exc}", file=sys.stderr)
+            return 2
     if a.reference == "calculix-whole":
         from fem.calculix.run import CcxNotFound
         from .verify.whole_check import command_line, run_whole_validation
@@ -347,6 +359,10 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--freeze", metavar="JSON",
                    help="calculix-whole, and calculix on a [bevel] case: write the CalculiX results as a frozen "
                         "reference with provenance")
+    v.add_argument("--merge", metavar="JSON",
+                   help="calculix-whole: refine the --positions of this frozen reference by --refine rungs of 1.5 "
+                        "beyond the band each was frozen at and merge them into it, with each position's ladder "
+                        "(the other positions and the first position's ladder kept; ltca.verify.whole_merge)")
     v.add_argument("--ladder", choices=["finer", "coarser", "both"], default="finer",
                    help="calculix-whole: the --refine rungs at the first position refine the base contact band and "
                         "fillets by 1.5 each (finer, default), coarsen them (coarser) or both (both); the first "

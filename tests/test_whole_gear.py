@@ -186,3 +186,26 @@ def test_coarse_body_and_unconverged_readouts():
     bad = unconverged([run(0.225, 900.0, 70.0, 70.0), run(0.15, 1000.0, 72.0, 74.0)])
     assert set(bad) == {"flank_pressure", "root_gear"} and "900.0 -> 1000.0 MPa (+11.1 %)" in bad["flank_pressure"]
     assert unconverged([run(0.15, 1000.0, 72.0, 74.0)]) == {}
+
+
+def test_fitted_peak_says_where():
+    """The elliptic-fit flank peak (issue 18) is found on its line and slice, with the radius of its centre: an
+    elliptic pressure of 1000 MPa over a half-width of 0.2 mm on the second of two lines, peaking at z 2.5 mm (a
+    slice centre)."""
+    from types import SimpleNamespace
+
+    from fem.solids import ContactLine
+    from ltca.verify.calculix import _fitted_peak
+    from ltca.verify.fitted_peak import fitted_peak
+    b = 14.0
+    lines = [ContactLine((20.0, 0.0, -7.0), (20.0, 0.0, 7.0), (1.0, 0.0, 0.0)),
+             ContactLine((0.0, 30.0, -7.0), (0.0, 30.0, 7.0), (0.0, 1.0, 0.0))]
+    t, z = np.meshgrid(np.linspace(-0.3, 0.3, 31), np.linspace(-7.0, 7.0, 71))
+    X = np.column_stack([t.ravel() + 0.05, np.full(t.size, 30.0), z.ravel()])     # across line 1: along -x
+    p = 1000.0 * np.sqrt(np.clip(1 - (X[:, 0] - 0.05) ** 2 / 0.04, 0, None)) * (1 - 0.01 * (X[:, 2] - 2.5) ** 2)
+    mesh = SimpleNamespace(nodes=X)
+    ids = np.arange(1, len(X) + 1)
+    at = fitted_peak(mesh, lines, ids, p, b, window=(-6.0, 6.0))
+    assert at["line"] == 1 and at["p"] == pytest.approx(1000.0, rel=0.01) and at["z_mm"] == pytest.approx(2.5)
+    assert at["r_mm"] == pytest.approx(np.hypot(0.05, 30.0), abs=0.01) and at["half_width_um"] == pytest.approx(200, 5)
+    assert _fitted_peak(mesh, lines, ids, p, b, window=(-6.0, 6.0)) == at["p"]

@@ -128,37 +128,10 @@ def _window(line: ContactLine, focus: Focus) -> ContactLine:
 
 def _fitted_peak(mesh, lines: list[ContactLine], nodes: np.ndarray, pressure: np.ndarray, b: float,
                  slices: int = 14, window: tuple[float, float] | None = None) -> float:
-    """Largest elliptic-fit peak (Hertz shape across the contact line) over face slices of the slave nodes.
-
-    The slices are 1/``slices`` of the face width ``b`` long; with ``window`` (z range, mm) only the
-    slices inside it count.
-
-    Nodal contact pressures of penalty contact on quadratic faces scatter by tens of per cent at a few
-    elements per contact width; the fit of p^2 by a parabola across the band (``fit_elliptic``) is the
-    robust peak, the same estimator ``ltca validate`` uses for ours."""
-    from .validate import fit_elliptic
-    ok = (nodes >= 1) & (nodes <= len(mesh.nodes)) & (pressure > 0)
-    X, p = mesh.nodes[nodes[ok] - 1], pressure[ok]
-    best = 0.0
-    edges = np.linspace(-0.5 * b, 0.5 * b, slices + 1)
-    if window is not None:
-        n = max(1, int(round((window[1] - window[0]) / (b / slices))))
-        edges = np.linspace(window[0], window[1], n + 1)
-    for ln in lines:
-        p0, d = np.asarray(ln.p0), np.asarray(ln.p1) - np.asarray(ln.p0)
-        el = d / np.linalg.norm(d)
-        t_dir = np.cross(np.asarray(ln.normal), el)
-        t_dir /= np.linalg.norm(t_dir)
-        near = np.abs((X - p0) @ np.asarray(ln.normal)) < 0.05
-        t = (X - p0) @ t_dir
-        for lo, hi in zip(edges[:-1], edges[1:]):
-            m = near & (X[:, 2] >= lo) & (X[:, 2] <= hi)
-            if np.count_nonzero(m & (p > 0.25 * p[m].max(initial=0))) >= 5:
-                with np.errstate(invalid="ignore"):
-                    pk = fit_elliptic(t[m], p[m])[0]
-                if np.isfinite(pk):
-                    best = max(best, pk)
-    return float(best)
+    """Largest elliptic-fit peak (Hertz shape across the contact line) over face slices of the slave nodes
+    (:func:`ltca.verify.fitted_peak.fitted_peak`, which also says where)."""
+    from .fitted_peak import fitted_peak
+    return fitted_peak(mesh, lines, nodes, pressure, b, slices, window)["p"]
 
 
 @dataclass

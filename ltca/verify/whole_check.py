@@ -194,7 +194,8 @@ def _entry(c) -> dict:
             "te": c.te, "stiffness": c.stiffness,
             "share": {str(k): v for k, v in c.share(sorted(c.pair_load)).items()},
             "pair_load": {str(k): v for k, v in c.pair_load.items()},
-            "flank_pressure": c.info.get("p_flank"), "max_pressure": c.max_pressure,
+            "flank_pressure": c.info.get("p_flank"), "flank_at": c.info.get("p_flank_at"),
+            "max_pressure": c.max_pressure,
             "root_stress": c.root, "deck_sha256": c.info["deck_sha256"], "nodes": c.info["nodes"],
             "elements": c.info["elements"], "nodes_pinion": c.info["nodes_pinion"], "nodes_gear": c.info["nodes_gear"],
             "h_contact_um": 1e3 * c.info["h_contact_mm"], "h_fillet_um": 1e3 * _h_fillet(c),
@@ -204,6 +205,9 @@ def _entry(c) -> dict:
             "mesh_wall_s": c.info["mesh_wall"], "wall_s": c.wall}
 
 
+#: where the flank peak is, as a frozen reference defines it
+FLANK_AT = ("the flank peak's pinion tooth, the radius (pinion frame) of the fit's centre and the slice's mid z, mm, "
+            "the fitted half-width, um, and the nodes fitted (ltca.verify.fitted_peak)")
 #: a read-out that moves more than this over the ladder's last refinement is not converged: the frozen reference
 #: records it under ``unconverged`` with the numbers, and a test does not compare it (issue 18: 5 % bounds)
 CONVERGED = {"flank_pressure": 0.05, "root_pinion": 0.05, "root_gear": 0.05}
@@ -246,7 +250,8 @@ def _freeze(path: str, case_path: str, torque: float, runs: dict, ladder, comman
                                  "out (ours: flank peak away from edge contact, ltca.cylindrical.edges)",
                "root_stress": "largest principal nodal stress on the loaded teeth's tension-side fillets, "
                               "|z| <= 0.45 b (ltca.verify.whole_root; ours: fem.compliance root_max)",
-               "max_pressure": "largest elliptic-fit peak over all face slices (face ends included)"},
+               "max_pressure": "largest elliptic-fit peak over all face slices (face ends included)",
+               "flank_at": FLANK_AT},
            "ours_compliance_wall_s": t_prepare,
            "convergence": [_entry(c) for c in ladder],
            "positions": [dict(_entry(c), ours_at_freeze=ours.get(rd)) for rd, c in runs.items()]}

@@ -29,7 +29,8 @@ flank and tip (the satellite's tip corner on the wheel flank). A tooth's load su
 Read per position: loaded TE (arcsec of the gear, unloaded part removed), load per pinion tooth, mesh
 stiffness ``(T / r_b1) / (b (theta - theta0) r_b1)`` in N/(mm um) (as
 :func:`ltca.cylindrical.results.mesh_stiffness`), the elliptic-fit peak flank pressure over the whole face
-and away from the face ends (``info["p_flank"]``, as ours keeps its flank peak apart from edge contact),
+and away from the face ends (``info["p_flank"]``, as ours keeps its flank peak apart from edge contact; where:
+``info["p_flank_at"]``),
 and the root stress of each member (largest principal nodal stress on the loaded teeth's tension-side
 fillets, as ours reads it: :mod:`ltca.verify.whole_root`). Each run is kept in its folder with
 ``result.json`` (keyed by the deck's SHA-256) and reused; read-outs a record lacks are added from the
@@ -54,6 +55,7 @@ from geometry.pair import rotation_z
 from ..cylindrical.loaded_model import LoadedModel
 from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact
 from .calculix import _fitted_peak, contact_lines, penalty_slope
+from .fitted_peak import fitted_peak
 from .whole_root import Member, fillet_stress
 
 __all__ = ["WholeSettings", "WholeResult", "whole_settings", "BODIES", "solve_whole", "stiffness", "FLANK_SLICES",
@@ -226,9 +228,9 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
         rec = json.loads(done.read_text())
         if rec.get("deck_sha256") == digest:
             say(f"whole-gear CalculiX roll {roll_deg:+.3f} deg, band {1e3 * st.h_contact:.0f} um: reusing {done}")
-            if ("root" not in rec or "p_flank" not in rec["info"]) and (work / "job.frd").exists():
+            if ({"root"} - set(rec) or {"p_flank", "p_flank_at"} - set(rec["info"])) and (work / "job.frd").exists():
                 res = read_results(work / "job", ids["rot"], tuple(p.name for p in pairs))
-                _readouts(rec, work, res, m1, L1, members, b)
+                _readouts(rec, work, res, m1, L1, members, b, [k for k, _, _ in lines])
                 done.write_text(json.dumps(rec, indent=1))
             return WholeResult(roll_deg, rec["te"], {int(k): v for k, v in rec["pair_load"].items()}, rec["stiffness"],
                                rec["max_pressure"], rec["wall"], rec["info"], rec.get("root", {}))
@@ -248,7 +250,7 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
     rec = {"deck_sha256": digest, "te": out.te, "pair_load": out.pair_load, "stiffness": out.stiffness,
            "max_pressure": out.max_pressure, "wall": out.wall, "info": out.info}
     done.write_text(json.dumps(rec, indent=1))            # kept before the stress read-out: a run is costly
-    _readouts(rec, work, res, m1, L1, members, b)
+    _readouts(rec, work, res, m1, L1, members, b, [k for k, _, _ in lines])
     out.root = rec["root"]
     done.write_text(json.dumps(rec, indent=1))
     say(f"  flank peak (face-end slices left out) {rec['info']['p_flank']:.0f} MPa; root stress "
@@ -262,10 +264,13 @@ def solve_whole(lm: LoadedModel, roll_deg: float, torque: float, st: WholeSettin
 FLANK_SLICES = 14
 
 
-def _readouts(rec: dict, work: Path, res, m1, L1, members, b: float) -> None:
+def _readouts(rec: dict, work: Path, res, m1, L1, members, b: float, teeth: list) -> None:
     """Add the root stress (``rec["root"]``) and the flank peak away from the face ends (``rec["info"]["p_flank"]``,
-    MPa, the elliptic fit over the inner slices) to a run's record."""
+    MPa, the elliptic fit over the inner slices; ``p_flank_at``: its pinion tooth (``teeth`` per line), radius and z,
+    mm, and fitted half-width, um) to a run's record."""
     cut = b / FLANK_SLICES
-    rec["info"]["p_flank"] = _fitted_peak(m1, L1, res.contact_nodes, res.contact_pressure, b,
-                                          window=(-0.5 * b + cut, 0.5 * b - cut))
+    at = fitted_peak(m1, L1, res.contact_nodes, res.contact_pressure, b, window=(-0.5 * b + cut, 0.5 * b - cut))
+    rec["info"]["p_flank"] = at["p"]
+    rec["info"]["p_flank_at"] = {"tooth": int(teeth[at["line"]]) if at["line"] >= 0 else None,
+                                 **{k: at[k] for k in ("r_mm", "z_mm", "half_width_um", "nodes")}}
     rec["root"] = fillet_stress(work / "job.frd", members, b)
