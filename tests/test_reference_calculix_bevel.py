@@ -19,8 +19,8 @@ ladder at phi1 = 0 (not frozen: one freeze reruns every rung, ~25 min each on th
 peak (133 um, pair -1: 1924 MPa, neighbours 1309/1095/968, ours 983 there): now passed over. Read like-with-like
 (same interior mask both sides), pair 0's Hertz ellipse, where ours' peak lies (L1 83.2 mm, Rn1 -0.1 mm), reads 1528
 / 1552 MPa fitted (nodal max 1578 / 1579): converged within 1.6 %; ours 1644 is +5.9 %. The flank's interior maximum
-at 89 um is 1568 (fitted, pair -1, L1 73.3 Rn1 2.2, 2.3 mm from the toe, where ours has no contact: the spike's spot
-at 133 um, not a like-with-like peak): +4.8 %.  Along pair 0's major axis ours and CalculiX agree within 3 % beyond
+at 89 um is 1568 (fitted, pair -1, L1 73.3 Rn1 2.2, 2.3 mm from the toe, where ours has no contact: 1 mm from the
+133 um spike, not a like-with-like peak): +4.8 %.  Along pair 0's major axis ours and CalculiX agree within 3 % beyond
 2 mm of the centre and ours is 5-7 % higher over the central +-1.6 mm; line Hertz from ours' line load (800 N/mm, R'
 11.3 mm) gives 1595 MPa, between the two. No single-pair position at 175 N m: ours' largest pair share over a cycle
 is 0.752 (phi1 -0.05 pitch); at 35 N m pair 0 carries all at -0.15..-0.05 (a light reference there is not frozen
