@@ -33,7 +33,9 @@ ours) and the pair torques sum to 0.998 of the torque.
 Read per position: theta (arcsec of the gear), each pair's torque share about the pinion axis (total contact
 force of the pair times its pressure centroid), and the peak flank pressure away from the edges (pinion top,
 gear top, toe and heel: farther than ``edge_mm``, :func:`interior`), from a quadratic fit of p^2 (the elliptic
-Hertz shape) around the highest node.  Runs are kept in their folder with ``result.json`` keyed by the deck's SHA-256.
+Hertz shape) around the highest node that is no isolated spike (:mod:`ltca.verify.bevel_ccx_read`).  Runs are kept
+in their folder with ``result.json`` keyed by the deck's SHA-256; a kept run is read out again from its
+``job.dat`` and ``job.frd`` (a changed read-out applies without rerunning CalculiX).
 """
 from __future__ import annotations
 
@@ -53,6 +55,7 @@ from geometry.bevel.tca import RAD_PER_ARCSEC, mesh_frames, to_pitch_coords
 
 from ..bevel.cells import pair_minima
 from ..bevel.model import LOADED, BevelLoadedModel
+from .bevel_ccx_read import interior, read_pairs
 from .calculix import penalty_slope
 
 __all__ = ["BevelCcxSettings", "BevelCcxResult", "solve_bevel_ccx", "bevel_ladder", "interior", "under_top"]
@@ -234,41 +237,27 @@ def solve_bevel_ccx(lm: BevelLoadedModel, phi1: float, torque1: float, st: Bevel
             "settings": asdict(st), "mesh_wall": m1.seconds + m2.seconds, "deck_sha256": digest,
             "snap_um": [1e3 * s1.extra["snap_mm"], 1e3 * s2spec.extra["snap_mm"]], "pairs": pairs_j}
     done = work / "result.json"
-    if done.exists() and json.loads(done.read_text()).get("info", {}).get("deck_sha256") == digest:
-        say(f"  reusing {done}")
-        rec = json.loads(done.read_text())
-        return BevelCcxResult(**{k: rec[k] for k in rec if k != "share" and k != "pair_force"},
-                              share={int(k): v for k, v in rec["share"].items()},
-                              pair_force={int(k): v for k, v in rec["pair_force"].items()})
-    say(f"  {3 * info['nodes']} dofs, {len(pairs)} contact pair(s), meshed in {info['mesh_wall']:.0f} s; ccx ...")
-    wall = run_ccx(work / "job.inp", threads=st.threads)
+    stored = json.loads(done.read_text()) if done.exists() else None
+    reuse = stored is not None and stored.get("info", {}).get("deck_sha256") == digest
+    if reuse and not all((work / f"job.{x}").exists() for x in ("dat", "frd")):
+        say(f"  reusing {done} (results files gone: its stored read-out)")
+        return BevelCcxResult(**{k: stored[k] for k in stored if k != "share" and k != "pair_force"},
+                              share={int(k): v for k, v in stored["share"].items()},
+                              pair_force={int(k): v for k, v in stored["pair_force"].items()})
+    if reuse:
+        say(f"  reusing {work} (read out again)")
+        wall = stored["info"]["ccx_wall"]
+    else:
+        say(f"  {3 * info['nodes']} dofs, {len(pairs)} contact pair(s), meshed in {info['mesh_wall']:.0f} s; ccx ...")
+        wall = run_ccx(work / "job.inp", threads=st.threads)
     res = read_results(work / "job", ids["rot"], tuple(p.name for p in pairs))
     theta = ratio * (delta + s2 * res.rotation)
-    # torque share about the pinion axis: each pair's force at its pressure centroid (the gear-slave corner pair's
-    # force acts on the gear: its reaction on the pinion); interior peak pressure on the pinion's flank
-    n1 = len(m1.nodes)
     X = np.vstack([m1.nodes @ T1[:3, :3].T, m2.nodes @ T2[:3, :3].T + T2[:3, 3]])
-    idx = res.contact_nodes - 1
-    ok = (idx >= 0) & (idx < len(X)) & (res.contact_pressure > 0)
-    idx, p = idx[ok], res.contact_pressure[ok]
-    torques, forces, peaks = {j: 0.0 for j in pairs_j}, {j: 0.0 for j in pairs_j}, []
-    for j, pr in zip(owner, pairs):
-        gear_slave = pr.slave[0] == "gear"
-        on = np.isin(idx, np.unique(groups[pr.slave[0]][pr.slave[1][0]]) + (n1 if gear_slave else 0))
-        F = np.asarray(res.pair_force.get(pr.name, np.zeros(3))) * (-1.0 if gear_slave else 1.0)
-        forces[j] += float(np.linalg.norm(F))
-        if on.any() and np.linalg.norm(F) > 0.0:
-            c = (p[on, None] * X[idx[on]]).sum(0) / p[on].sum()
-            torques[j] += float(np.cross(c, F)[2])
-        keep = on & (idx < n1)
-        keep[keep] = _interior(lm, X[idx[keep]], T2, st.edge_mm)
-        if keep.any():
-            peaks.append(_fit_peak(m1.nodes[idx[keep]], p[keep], 2.5 * st.h_zone))
-    torques = {j: abs(v) for j, v in torques.items()}
-    pmax = float(p.max()) if p.size else 0.0
+    torques, forces, p_int, pmax = read_pairs(lm, res, X, m1.nodes, T2, groups, pairs, owner, pairs_j, st.edge_mm,
+                                              2.5 * st.h_zone)
     tot = sum(torques.values()) or 1.0
     out = BevelCcxResult(float(phi1), theta / RAD_PER_ARCSEC, {j: v / tot for j, v in torques.items()}, forces,
-                         max(peaks, default=0.0), pmax, time.perf_counter() - t_all,
+                         p_int, pmax, stored["wall"] if reuse else time.perf_counter() - t_all,
                          dict(info, ccx_wall=wall, psi=res.rotation, delta=delta,
                               torque_balance=tot / torque1, reaction=res.fixed_reaction.tolist()))
     say(f"  ccx {wall:.0f} s: theta {out.theta_arcsec:.2f} arcsec, share "
@@ -276,40 +265,3 @@ def solve_bevel_ccx(lm: BevelLoadedModel, phi1: float, torque1: float, st: Bevel
         f"(nodal max {pmax:.0f}), torque balance {tot / torque1:.3f}")
     done.write_text(json.dumps(asdict(out), indent=1))
     return out
-
-
-def interior(lm: BevelLoadedModel, L1, Rn1, L2, Rn2, edge: float) -> np.ndarray:
-    """Points (pinion and gear axial sections, mm) farther than ``edge`` mm from both members' tops, toes and heels
-    (a member's root is the other's top)."""
-    out = np.ones(np.shape(L1), bool)
-    for M, L, Rn in ((lm.gaps.P, L1, Rn1), (lm.gaps.G, L2, Rn2)):
-        out &= (M._cones(L)[1] - Rn > edge) & (L > M.Ai + edge) & (L < M.A0 - edge)
-    return out
-
-
-def _interior(lm: BevelLoadedModel, X: np.ndarray, T2: np.ndarray, edge: float) -> np.ndarray:
-    """:func:`interior` of world points X on the pinion (world = pinion frame at its deck angle ``T1 = rz``)."""
-    bl = lm.pair.blank
-    L1, Rn1 = to_pitch_coords(X, bl.pinion.pitch_angle)
-    Xg = (X - T2[:3, 3]) @ T2[:3, :3]
-    L2, Rn2 = to_pitch_coords(Xg, bl.gear.pitch_angle)
-    return interior(lm, L1, Rn1, L2, Rn2, edge)
-
-
-def _fit_peak(X: np.ndarray, p: np.ndarray, radius: float) -> float:
-    """Peak of p from a quadratic fit of p^2 (elliptic Hertz: p^2 is quadratic) around the highest node."""
-    i = int(np.argmax(p))
-    m = (np.linalg.norm(X - X[i], axis=1) < radius) & (p > 0.3 * p[i])
-    if m.sum() < 8:
-        return float(p[i])
-    Y = X[m] - X[i]
-    u, s, vt = np.linalg.svd(Y - Y.mean(0), full_matrices=False)
-    a, b = Y @ vt[0], Y @ vt[1]
-    A = np.column_stack([np.ones_like(a), a, b, a * a, a * b, b * b])
-    c = np.linalg.lstsq(A, p[m] ** 2, rcond=None)[0]
-    H = np.array([[2 * c[3], c[4]], [c[4], 2 * c[5]]])
-    if np.all(np.linalg.eigvalsh(H) < 0):
-        x = np.linalg.solve(H, -c[1:3])
-        if np.hypot(*x) < radius:
-            return float(np.sqrt(max(c[0] + 0.5 * c[1:3] @ x, 0.0)))
-    return float(np.sqrt(max(np.max(A @ c), 0.0)))
