@@ -80,6 +80,20 @@ def _row(roll, mine, r, c, lm, torque, teeth):
             "ccx_nodes": c.info["nodes"], "band_um": 1e3 * c.info["h_contact_mm"], "ours": o}
 
 
+def prepare_ours(case, fidelity: str, progress: bool):
+    """Our loaded model of ``case`` at ``fidelity`` over its cycle (first torque), the progress printer (stderr, or
+    silent) and the preparation's wall time, s."""
+    from ..case import FIDELITIES
+    from ..cylindrical.loaded_model import Fidelity, prepare
+    from ..cylindrical.model import build_model
+    from ..cylindrical.run import cycle_rolls
+    say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
+    t0 = time.perf_counter()
+    lm = prepare(build_model(case), Fidelity.from_preset(FIDELITIES[fidelity], case.module),
+                 cycle_rolls(case.positions, case.pinion.teeth), case.torques[0], progress=say)
+    return lm, say, time.perf_counter() - t0
+
+
 def run_whole_validation(case_path: str, positions: list[float], out: str, band_um: float | None = None,
                          refine: int = 1, fidelity: str = "default", freeze: str | None = None,
                          command: str | None = None, progress: bool = True, threads: int = 2,
@@ -91,9 +105,6 @@ def run_whole_validation(case_path: str, positions: list[float], out: str, band_
     from fem.calculix.run import ccx_path
     from ..case import FIDELITIES, load_case
     from ..errors import CaseError
-    from ..cylindrical.loaded_model import Fidelity, prepare
-    from ..cylindrical.model import build_model
-    from ..cylindrical.run import cycle_rolls
     case = load_case(case_path)
     pitch_deg = 360.0 / case.pinion.teeth
     rolls = list(positions or [0.0, -9.0])
@@ -114,12 +125,8 @@ def run_whole_validation(case_path: str, positions: list[float], out: str, band_
     if case.gear.internal:
         raise CaseError("--case", case_path, "an external pair (the whole-gear CalculiX model has no ring gear)")
     ccx_path()
-    say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
     torque = case.torques[0]
-    t0 = time.perf_counter()
-    lm = prepare(build_model(case), Fidelity.from_preset(FIDELITIES[fidelity], case.module),
-                 cycle_rolls(case.positions, case.pinion.teeth), torque, progress=say)
-    t_prepare = time.perf_counter() - t0
+    lm, say, t_prepare = prepare_ours(case, fidelity, progress)
     base = whole_settings(lm.b_nom, case.module, band_um, threads=threads, body=body)
     outdir = Path(out)
     outdir.mkdir(parents=True, exist_ok=True)

@@ -14,14 +14,13 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
 from .calculix import penalty_slope
-from .whole_check import CONVERGED, FLANK_AT, _entry, _finite, ccx_version, ours_figures
+from .whole_check import CONVERGED, FLANK_AT, _entry, _finite, ccx_version, ours_figures, prepare_ours
 from .whole_gear import solve_whole, whole_settings
 
 __all__ = ["run_whole_merge", "ladder_key", "rung_settings", "ladder_change"]
@@ -80,9 +79,6 @@ def run_whole_merge(case_path: str, positions: list[float], out: str, merge: str
     from fem.calculix.run import ccx_path
     from ..case import FIDELITIES, load_case
     from ..cylindrical.loaded import solve_position
-    from ..cylindrical.loaded_model import Fidelity, prepare
-    from ..cylindrical.model import build_model
-    from ..cylindrical.run import cycle_rolls
     from ..errors import CaseError
     path = Path(merge)
     if not path.is_file():
@@ -101,13 +97,9 @@ def run_whole_merge(case_path: str, positions: list[float], out: str, merge: str
     if not 1 <= threads <= 64:
         raise CaseError("--threads", threads, "an integer from 1 to 64")
     ccx_path()
-    say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
     case = load_case(case_path)
     torque = case.torques[0]
-    t0 = time.perf_counter()
-    lm = prepare(build_model(case), Fidelity.from_preset(FIDELITIES[fidelity], case.module),
-                 cycle_rolls(case.positions, case.pinion.teeth), torque, progress=say)
-    t_prepare = time.perf_counter() - t0
+    lm, say, t_prepare = prepare_ours(case, fidelity, progress)
     base = whole_settings(lm.b_nom, case.module, None, threads=threads, body=body)
     for rd in rolls:
         _check_body(base, rec["positions"][frozen[ladder_key(rd)]], rd)
