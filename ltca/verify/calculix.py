@@ -35,8 +35,8 @@ from ..cylindrical.loaded_model import LoadedModel
 from ..cylindrical.loaded import solve_position
 from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact, flank_gaps
 
-__all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "richardson", "contact_lines",
-           "solve_ccx", "solve_ours", "narrowest_contact"]
+__all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "richardson",
+           "grid_convergence_index", "contact_lines", "solve_ccx", "solve_ours", "narrowest_contact"]
 
 
 @dataclass(frozen=True)
@@ -265,14 +265,32 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
 def richardson(values: list[float], ratio: float) -> tuple[float, float] | None:
     """Extrapolated limit and observed order of three values on meshes refined by ``ratio`` each time.
 
-    p = ln((f0 - f1) / (f1 - f2)) / ln(ratio), f = f2 + (f2 - f1) / (ratio^p - 1); None when the
-    differences change sign (no monotone convergence) or vanish."""
+    p = ln((f0 - f1) / (f1 - f2)) / ln(ratio), f = f2 + (f2 - f1) / (ratio^p - 1) (Richardson extrapolation with
+    the observed order; Roache, *Verification and Validation in Computational Science and Engineering*, 1998,
+    ch. 5). None outside the asymptotic range: when the differences change sign or vanish, when the last one is
+    not the smaller (no convergence), or when the order lies outside [0.5, 4] (the formal orders of quadratic
+    elements are 2 for stress and 3 for displacement; an order far beyond them is a near-coincidence of two
+    rungs, not a rate)."""
     f0, f1, f2 = values
     d1, d2 = f0 - f1, f1 - f2
-    if d1 == 0 or d2 == 0 or d1 * d2 < 0:
+    if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
         return None
     p = np.log(d1 / d2) / np.log(ratio)
+    if not 0.5 <= p <= 4.0:
+        return None
     return float(f2 - d2 / (ratio ** p - 1)), float(p)
+
+
+def grid_convergence_index(values: list[float], ratio: float, safety: float = 1.25) -> float | None:
+    """Roache's grid convergence index of the finest of three rungs: safety |f2 - f1| / |f2| / (ratio^p - 1), the
+    relative band that holds the converged value with the observed order p of :func:`richardson` (safety 1.25 for
+    a three-rung study; Roache 1998; Celik et al., J. Fluids Eng. 130 (2008) 078001). None outside the asymptotic
+    range."""
+    est = richardson(values, ratio)
+    if est is None:
+        return None
+    f1, f2 = values[1:]
+    return float(safety * abs(f2 - f1) / abs(f2) / (ratio ** est[1] - 1))
 
 
 def narrowest_contact(res) -> tuple[int, float]:
