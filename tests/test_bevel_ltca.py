@@ -99,6 +99,31 @@ def test_loaded_te_tends_to_unloaded(lm):
     assert 0.62 < n < 0.75
 
 
+def test_light_load_deficit_is_the_hertz_approach(pair, lm):
+    """Why the loaded TE does not meet the unloaded one within 0.1 arcsec at 1 N m (issue 13 asks it): the deficit
+    is the Hertz approach of a point contact, delta = 3 F K(e) / (2 pi a E*) (Johnson eq. 4.41c) with the TCA's
+    relative curvature at the mean point (independent of the LTCA's gaps), turned into a gear rotation by the work
+    balance T2 dtheta2 = F d delta, plus the bodies' part, linear in the torque: dTE = delta(F) F / T2 + c T to 1 %
+    from 1e-3 to 1 N m, c from 1 N m. Measured (default fidelity): at 1 N m 2.964 arcsec = 2.680 Hertz + 0.284
+    bodies; at 0.1 N m 0.604 = 0.577 + 0.027; the approach alone is 27 times the 0.1 arcsec asked at 1 N m and
+    falls below it only under 0.01 N m (0.124 arcsec there)."""
+    r = tca(pair, "concave", steps_per_cycle=16, max_cycles=1.0)
+    i0 = int(np.argmin(np.abs(r.phi1)))
+    d = 0.00632                                       # the approach of the TCA's ellipse (geometry.bevel.tca)
+    A, B = d / (0.5 * r.major[i0]) ** 2, d / (0.5 * r.minor[i0]) ** 2
+    ratio = pair.blank.gear.z / pair.blank.pinion.z
+    out = {}
+    for T in (1.0, 1e-1, 1e-2, 1e-3):
+        res = solve_position(lm, 0.0, T * 1e3)
+        F = res.force.sum()
+        hertz = elliptic_hertz(F, A, B, E_MPA, NU).delta * F / (T * 1e3 * ratio) / RAD_PER_ARCSEC
+        out[T] = ((res.te0 - res.te) / RAD_PER_ARCSEC, hertz)
+    c = out[1.0][0] - out[1.0][1]
+    assert 0.8 * out[1.0][0] < out[1.0][1] < out[1.0][0]                 # the approach is most of the deficit
+    for T, (dte, hertz) in out.items():
+        assert dte == pytest.approx(hertz + c * T, rel=0.01)
+
+
 def test_pattern_grows_with_load(lm):
     area = [solve_position(lm, 0.0, T).area[solve_position(lm, 0.0, T).force > 0].sum() for T in (35e3, 175e3, 350e3)]
     assert area[0] < area[1] < area[2]
