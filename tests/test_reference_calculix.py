@@ -105,25 +105,34 @@ def _rec(path: Path) -> dict:
     return json.loads(path.read_text())
 
 
-def _lm(path: Path):
-    """Our loaded model of the reference's case (default fidelity), built once per file."""
+#: the session fixtures (tests/conftest.py) that hold our model of a reference's case, built the same way as
+#: :func:`_lm` (default fidelity, the case's 30 positions per cycle, its first torque): shared, not built twice
+SESSION_MODELS = {"cases/fzg_c14.toml": "fzg_lm", "cases/helical_c14.toml": "helical_lm"}
+
+
+def _lm(path: Path, request=None):
+    """Our loaded model of the reference's case (default fidelity), built once per file (or the session's)."""
     if path not in _LM:
         from ltca.case import FIDELITIES, load_case
         from ltca.cylindrical.loaded_model import Fidelity, prepare
         from ltca.cylindrical.model import build_model
         from ltca.cylindrical.run import cycle_rolls
-        case = load_case(ROOT / _rec(path)["case"])
-        _LM[path] = prepare(build_model(case), Fidelity.from_preset(FIDELITIES["default"], case.module),
-                            cycle_rolls(case.positions, case.pinion.teeth), case.torques[0]), case
+        name = _rec(path)["case"]
+        case = load_case(ROOT / name)
+        if request is not None and name in SESSION_MODELS:
+            _LM[path] = request.getfixturevalue(SESSION_MODELS[name]), case
+        else:
+            _LM[path] = prepare(build_model(case), Fidelity.from_preset(FIDELITIES["default"], case.module),
+                                cycle_rolls(case.positions, case.pinion.teeth), case.torques[0]), case
     return _LM[path]
 
 
-def _ours(path: Path, roll_deg: float) -> dict:
+def _ours(path: Path, roll_deg: float, request=None) -> dict:
     """Our figures at a reference position (:func:`ltca.verify.whole_check.ours_figures`), solved once."""
     if (path, roll_deg) not in _OURS:
         from ltca.cylindrical.loaded import solve_position
         from ltca.verify.whole_check import ours_figures
-        lm, case = _lm(path)
+        lm, case = _lm(path, request)
         r = solve_position(lm, np.radians(roll_deg), case.torques[0])
         _OURS[path, roll_deg] = ours_figures(lm, r, case.torques[0])
     return _OURS[path, roll_deg]
@@ -299,11 +308,11 @@ def test_converged_estimate_by_hand():
 
 
 @pytest.mark.parametrize("path,index,quantity", _cases())
-def test_ours_against_frozen_calculix(path, index, quantity):
+def test_ours_against_frozen_calculix(path, index, quantity, request):
     """TE and mesh stiffness within 2 %, shares within 0.03, flank peak and root stresses within 5 %."""
     rec = _rec(path)
     ref = rec["positions"][index]
-    ours = _ours(path, ref["roll_deg"])
+    ours = _ours(path, ref["roll_deg"], request)
     theirs = ref["share"] if quantity == "share" else _reference_value(ref, quantity, rec)
     assert deviation(quantity, ours, ref, rec) <= BOUNDS[quantity], \
         f"{quantity}: ours {ours[quantity]} vs CalculiX {theirs}"
