@@ -29,7 +29,7 @@ class BevelFidelity:
     """
     name: str = "default"
     grid: tuple[int, int] = (9, 13)
-    divisions: tuple[int, int, int, int, int, int] = (14, 7, 5, 3, 3, 16)
+    divisions: tuple[int, int, int, int, int, int] = (14, 10, 5, 3, 3, 16)
     depth: float = 0.5
     cells: tuple[int, int] = (33, 17)
     window: tuple[float, float] = (1.6, 1.0)
@@ -38,9 +38,9 @@ class BevelFidelity:
     @classmethod
     def named(cls, name: str) -> "BevelFidelity":
         """``coarse``, ``default`` or ``fine`` (the convergence ladder)."""
-        table = {"coarse": cls("coarse", (7, 9), (10, 5, 4, 3, 2, 12), 0.5, (25, 13)),
+        table = {"coarse": cls("coarse", (7, 9), (10, 7, 4, 3, 2, 12), 0.5, (25, 13)),
                  "default": cls(),
-                 "fine": cls("fine", (11, 17), (20, 10, 7, 4, 4, 24), 0.5, (45, 23))}
+                 "fine": cls("fine", (11, 17), (14, 16, 8, 4, 4, 24), 0.5, (45, 23))}
         if name not in table:
             raise ValueError(f"fidelity = {name!r}: allowed {sorted(table)}")
         return table[name]
