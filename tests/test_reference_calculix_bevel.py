@@ -7,24 +7,24 @@ members built apart from our body (gmsh OCC solids, every tooth), pinion bore on
 gear back face fixed, penalty contact, both members held at the case's [mounting].  Bounds (issue 13): loaded TE
 (loaded minus unloaded, arcsec of the gear) 3 %, torque share per pair 0.03, interior peak flank pressure 5 %.
 
-phi1 = 0, before the deck fix (pinion band slave everywhere): nodal max 297 GPa at 200 um, TE 98.0/108.6/86.7 arcsec
-at 450/300/200 um, shares 0.12/0.88 (ours 111.3, 0.26/0.74). After (gear tip-corner pair, edge lines refined,
-:mod:`ltca.verify.bevel_ccx`): TE 112.03/112.62/112.86 (ours 111.46, -1.25 %), shares 0.258/0.742 (ours
-0.259/0.741), nodal max 2.7/3.2/3.4 GPa at the pinion's top edge, torque balance 0.998-1.000. phi1 = 0.4 (300 um):
-TE 99.19 (ours -1.53 %), shares 0.492/0.508. Interior peak pressure: ours +8.2 % (phi1 0) and +11.2 % (0.4) of
-CalculiX (1519, 1464 MPa; CalculiX's own not converged: 1361/1550/1519 MPa over the ladder): strict xfails. Extended
-ladder at phi1 = 0 (not frozen: one freeze reruns every rung, ~25 min each on the shared machine; run by
-:func:`ltca.verify.bevel_ccx.solve_bevel_ccx`, read by :mod:`ltca.verify.bevel_ccx_read`): 133 / 89 um, 104057 /
-122536 nodes, 1427 / 1828 s, TE 112.99 / 113.06. The interior peak's read-out had passed a single nodal spike as a
-peak (133 um, pair -1: 1924 MPa, neighbours 1309/1095/968, ours 983 there): now passed over. Read like-with-like
-(same interior mask both sides), pair 0's Hertz ellipse, where ours' peak lies (L1 83.2 mm, Rn1 -0.1 mm), reads 1528
-/ 1552 MPa fitted (nodal max 1578 / 1579): converged within 1.6 %; ours 1644 is +5.9 %. The flank's interior maximum
-at 89 um is 1568 (fitted, pair -1, L1 73.3 Rn1 2.2, 2.3 mm from the toe, where ours has no contact: 1 mm from the
-133 um spike, not a like-with-like peak): +4.8 %.  Along pair 0's major axis ours and CalculiX agree within 3 % beyond
-2 mm of the centre and ours is 5-7 % higher over the central +-1.6 mm; line Hertz from ours' line load (800 N/mm, R'
-11.3 mm) gives 1595 MPa, between the two. No single-pair position at 175 N m: ours' largest pair share over a cycle
-is 0.752 (phi1 -0.05 pitch); at 35 N m pair 0 carries all at -0.15..-0.05 (a light reference there is not frozen
-yet).
+Frozen 2026-11-27 (``--band 133.333 --refine 2 --level 1 --threads 2``): at phi1 = 0 (two pairs, shares
+0.258/0.742) the contact zone 133 / 89 / 59 um, 104 / 123 / 152 k nodes, 880 / 1425 / 2094 s: TE 112.998 / 113.051 /
+113.102 arcsec, interior peak 1528 / 1566 / 1561 MPa (converged: -0.4 % over the last step; the steps change sign,
+so no Richardson estimate, the finest rung is the reference), nodal maxima 3.9-5.0 GPa at the pinion's top edge
+(outside the interior), torque balance 1.000; at phi1 = 0.4 cycle (89 um, 400 k dofs, 1042 s) TE 99.60 arcsec,
+shares 0.492/0.508, interior peak 1602 MPa. Ours (default fidelity, the bodies' 10 tooth rows graded at 1.5): TE
+-0.99 / -1.45 %, shares within 0.003 / 0.006, interior peak 1613 / 1624 MPa, +3.3 / +1.4 % (``recompared`` in the
+file: CalculiX was frozen while ours still had 7 rows at 2.2, which read 1644 / 1628 MPa, +5.3 / +1.7 %, and TE
+-1.45 / -1.93 %; ``python3 -m ltca.verify.bevel_calculix FILE NOTE`` re-evaluates ours on the frozen rows). Our own
+convergence at phi1 = 0 (grid 15 x 25, 20 rows, 9 across the tooth): 1597 MPa and 112.97 arcsec, 2.3 % above and
+0.1 % below CalculiX's finest.
+
+History: before the deck fix (pinion band slave everywhere) the nodal maximum was 297 GPa at 200 um and the TE
+98.0/108.6/86.7 arcsec at 450/300/200 um (:mod:`ltca.verify.bevel_ccx` since: the gear's tip-corner pair, the top-
+edge lines refined); the read-out once took a single nodal spike for the peak (133 um, pair -1: 1924 MPa,
+neighbours 1309/1095/968), now passed over (:mod:`ltca.verify.bevel_ccx_read`). No single-pair position at 175 N m:
+ours' largest pair share over a cycle (41 positions) is 0.752 (phi1 -0.05 cycle); single-pair contact exists up to
+about 45 N m only (largest share 1.000 at 20 and 35 N m, 0.994 at 50, 0.920 at 70, 0.845 at 100, 0.797 at 130 N m).
 """
 from __future__ import annotations
 
