@@ -40,7 +40,7 @@ class BevelFidelity:
         """``coarse``, ``default`` or ``fine`` (the convergence ladder)."""
         table = {"coarse": cls("coarse", (7, 9), (10, 7, 4, 3, 2, 12), 0.5, (25, 13)),
                  "default": cls(),
-                 "fine": cls("fine", (11, 17), (14, 16, 8, 4, 4, 24), 0.5, (45, 23))}
+                 "fine": cls("fine", (11, 17), (14, 14, 7, 4, 4, 24), 0.5, (45, 23))}
         if name not in table:
             raise ValueError(f"fidelity = {name!r}: allowed {sorted(table)}")
         return table[name]
