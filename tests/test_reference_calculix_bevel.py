@@ -40,6 +40,13 @@ BOUNDS = {"te_rel": 0.03, "share_abs": 0.03, "pressure_rel": 0.05}
 _LM: dict = {}
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _release_models():
+    """Our bevel model lives as long as this module's tests, not the whole session."""
+    yield
+    _LM.clear()
+
+
 def _rec(name: str) -> dict:
     return json.loads(next(p for p in REFERENCES if p.stem == name).read_text())
 
