@@ -170,20 +170,13 @@ def converged_estimate(rec: dict, ref: dict, quantity: str) -> tuple[float | Non
     """CalculiX's converged estimate of a quantity at a position and its grid convergence index.
 
     Where the position's last three rungs are refined by the same ratio and converge in the asymptotic range
-    (:func:`ltca.verify.calculix.richardson`), the Richardson extrapolation with the observed order and Roache's
+    (:func:`ltca.verify.calculix.converged_estimate`), the Richardson extrapolation with the observed order and Roache's
     GCI of the finest rung; otherwise the finest rung and None."""
-    from ltca.verify.calculix import grid_convergence_index, richardson
+    from ltca.verify.calculix import converged_estimate as estimate
     ladder = _position_ladder(rec, ref)
-    finest = _rung_value(ref, quantity)
-    if len(ladder) < 3 or finest is None:
-        return finest, None
-    values = [_rung_value(e, quantity) for e in ladder[-3:]]
-    h = [e["h_contact_um"] for e in ladder[-3:]]
-    ratio = h[0] / h[1]
-    if None in values or abs(h[1] / h[2] / ratio - 1) > 0.01:
-        return finest, None
-    est = richardson(values, ratio)
-    return (finest, None) if est is None else (est[0], grid_convergence_index(values, ratio))
+    if _rung_value(ref, quantity) is None:
+        return None, None
+    return estimate([_rung_value(e, quantity) for e in ladder], [e["h_contact_um"] for e in ladder])
 
 
 def _reference_value(ref: dict, quantity: str, rec: dict | None = None):

@@ -77,16 +77,15 @@ def test_reference_records_its_provenance(name):
 
 
 def converged_pressure(name: str, index: int) -> float:
-    """CalculiX's interior peak at a row: at the ladder's position, where its last three rungs (refined by 1.5)
+    """CalculiX's interior peak at a row: at the ladder's position, where its last three rungs (refined by one ratio)
     converge in the asymptotic range, the Richardson extrapolation with the observed order
-    (:func:`ltca.verify.calculix.richardson`, as the cylindrical references); otherwise the row's own rung."""
-    from ltca.verify.calculix import richardson
+    (:func:`ltca.verify.calculix.converged_estimate`, as the cylindrical references); otherwise the finest rung."""
+    from ltca.verify.calculix import converged_estimate
     rec = _rec(name)
     row, ladder = rec["rows"][index], rec["refinement"]
-    if index != 0 or len(ladder) < 3:
+    if index != 0:
         return row["ccx"]["p_interior"]
-    est = richardson([e["p_interior"] for e in ladder[-3:]], 1.5)
-    return row["ccx"]["p_interior"] if est is None else est[0]
+    return converged_estimate([e["p_interior"] for e in ladder], [e["h_zone_um"] for e in ladder])[0]
 
 
 def _known_out(name: str) -> dict:

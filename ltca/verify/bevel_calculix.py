@@ -19,6 +19,7 @@ import sys
 import time
 from dataclasses import replace
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -178,8 +179,8 @@ def recompare(frozen: str, note: str) -> list[dict]:
     for r in rec["rows"]:
         o = ours_at(lm, r["phi1"], rec["torque_nm"])
         c = r["ccx"]
-        ccx = type("Frozen", (), {"theta_arcsec": c["theta"], "p_interior": c["p_interior"],
-                                  "share": {int(k): v for k, v in c["share"].items()}})
+        ccx = SimpleNamespace(theta_arcsec=c["theta"], p_interior=c["p_interior"],
+                              share={int(k): v for k, v in c["share"].items()})
         e = _compare(o, ccx)
         rows.append({**r, "ours": o, **e, "ok": _ok(e)})
     rec["rows"] = rows

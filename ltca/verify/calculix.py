@@ -36,7 +36,8 @@ from ..cylindrical.loaded import solve_position
 from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact, flank_gaps
 
 __all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "richardson",
-           "grid_convergence_index", "contact_lines", "solve_ccx", "solve_ours", "narrowest_contact"]
+           "grid_convergence_index", "converged_estimate", "contact_lines", "solve_ccx", "solve_ours",
+           "narrowest_contact"]
 
 
 @dataclass(frozen=True)
@@ -291,6 +292,21 @@ def grid_convergence_index(values: list[float], ratio: float, safety: float = 1.
         return None
     f1, f2 = values[1:]
     return float(safety * abs(f2 - f1) / abs(f2) / (ratio ** est[1] - 1))
+
+
+def converged_estimate(values: list[float], sizes: list[float]) -> tuple[float, float | None]:
+    """The converged estimate of a quantity over a refinement ladder (``values`` on element sizes ``sizes``,
+    coarsest first) and its grid convergence index: where the last three rungs are refined by one ratio (within
+    1 %) and converge in the asymptotic range, :func:`richardson` and :func:`grid_convergence_index`; otherwise
+    the finest value and None."""
+    if len(values) < 3 or None in values[-3:]:
+        return values[-1], None
+    h = sizes[-3:]
+    ratio = h[0] / h[1]
+    if abs(h[1] / h[2] / ratio - 1) > 0.01:
+        return values[-1], None
+    est = richardson(list(values[-3:]), ratio)
+    return (values[-1], None) if est is None else (est[0], grid_convergence_index(list(values[-3:]), ratio))
 
 
 def narrowest_contact(res) -> tuple[int, float]:
