@@ -26,13 +26,14 @@ def fzg_model(fzg_case):
 
 @pytest.fixture(scope="session")
 def fzg_lm(fzg_case, fzg_model, tmp_path_factory):
-    """FZG C14 at the default fidelity (flank elements 0.3 m = 1.35 mm), both bodies' compliance."""
+    """FZG C14 at the default fidelity (flank elements 0.3 m = 1.35 mm), both bodies' compliance (no factors: the
+    session keeps about 0.5 GB)."""
     from ltca.case import FIDELITIES
     from ltca.cylindrical.loaded_model import Fidelity, prepare
     from ltca.cylindrical.run import cycle_rolls
     fid = Fidelity.from_preset(FIDELITIES["default"], fzg_case.module)
     return prepare(fzg_model, fid, cycle_rolls(30, 16), fzg_case.torques[0],
-                   cache_dir=tmp_path_factory.mktemp("mesh"))
+                   cache_dir=tmp_path_factory.mktemp("mesh")).without_solver()     # no test writes its VTU
 
 
 def with_case(lm, **changes):
@@ -44,7 +45,8 @@ def with_case(lm, **changes):
 
 @pytest.fixture(scope="session")
 def helical_lm(tmp_path_factory):
-    """Helical C14 at the default fidelity (38 face slices on its 40 mm face), both bodies' compliance (40-60 s)."""
+    """Helical C14 at the default fidelity (38 face slices on its 40 mm face), both bodies' compliance (20-60 s; no
+    factors: the session keeps about 1 GB)."""
     from ltca.case import FIDELITIES, load_case
     from ltca.cylindrical.loaded_model import Fidelity, prepare
     from ltca.cylindrical.model import build_model
@@ -52,4 +54,4 @@ def helical_lm(tmp_path_factory):
     case = load_case(CASES / "helical_c14.toml")
     fid = Fidelity.from_preset(FIDELITIES["default"], case.module)
     return prepare(build_model(case), fid, cycle_rolls(30, case.pinion.teeth), case.torques[0],
-                   cache_dir=tmp_path_factory.mktemp("helical_mesh"))
+                   cache_dir=tmp_path_factory.mktemp("helical_mesh")).without_solver()   # 1.3 GB of factors freed

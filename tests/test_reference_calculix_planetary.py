@@ -42,6 +42,13 @@ BOUNDS = {"te_rel": 0.03, "share_abs": 0.03}
 _OURS: dict = {}
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _release_model():
+    """Our model (about 2 GB without its factor) lives as long as this module's tests, not the whole session."""
+    yield
+    _OURS.clear()
+
+
 def _rec() -> dict:
     return json.loads(REFERENCE.read_text())
 
@@ -53,8 +60,9 @@ def _model():
         from ltca.verify.planetary_whole import prepare_ours
         rec = _rec()
         case = load_planetary_case(ROOT / rec["case"])
+        # no VTU here: each body's factor (3-4 GB) freed as soon as its compliance is known
         _OURS["sm"], _OURS["lm"] = prepare_ours(case, [r["phi_deg"] for r in rec["rows"]], 1e3 * rec["torque_nm"],
-                                                rec["fidelity"])
+                                                rec["fidelity"], keep_solver=False)
     return _OURS["sm"], _OURS["lm"]
 
 

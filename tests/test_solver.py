@@ -119,3 +119,22 @@ def test_observe_with_fewer_rows_than_loads_solves_for_the_rows(beam, method):
     assert _rel(fac.solve(f, observe=O_few), ref[:, 3]) < 1e-10
     fac.release()
 
+
+
+def test_body_without_solver_frees_the_factor_and_keeps_the_compliance(beam):
+    """``BodyCompliance.without_solver``: the back-end factor is released (its solve no longer runs), the copy has no
+    mesh, factor or patch, and every figure the contact reads (C, root stress) is the same object."""
+    from fem.compliance import BodyCompliance
+    if "pardiso" not in available_methods():
+        pytest.skip("PARDISO (pypardiso) missing: the other back-ends hold their factor in Python")
+    K, fixed, F, O = beam
+    fact = factorize(K, fixed, method="pardiso")
+    assert fact._release is not None
+    body = BodyCompliance(spec=None, s_grid=np.zeros(2), z_grid=np.zeros(2), C=np.eye(4), depth=np.zeros(2),
+                          root_points=np.zeros((0, 3)), root_tooth=np.zeros(0, int),
+                          root_stress=np.zeros((0, 6, 4)), n_dofs=K.shape[0], mesh=object(), factorization=fact,
+                          patch=F)
+    lean = body.without_solver()
+    assert lean.factorization is None and lean.mesh is None and lean.patch is None
+    assert lean.C is body.C and lean.root_stress is body.root_stress and lean.n_dofs == body.n_dofs
+    assert fact._release is None                     # freed now, not when the garbage collector gets to it

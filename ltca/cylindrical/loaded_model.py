@@ -93,6 +93,11 @@ class LoadedModel:
     torque_nom: float         # N mm
     timings: dict = field(default_factory=dict)
 
+    def without_solver(self) -> LoadedModel:
+        """The same model with both bodies' factor freed (:meth:`fem.compliance.BodyCompliance.without_solver`):
+        for studies and checks that write no VTU; ``self`` can no longer write one."""
+        return dataclasses.replace(self, body1=self.body1.without_solver(), body2=self.body2.without_solver())
+
     def half_width(self, torque: float) -> float:
         """Nominal Hertz half-width at another torque: b grows as sqrt(load) (Johnson 4.2)."""
         return self.b_nom * np.sqrt(torque / self.torque_nom)

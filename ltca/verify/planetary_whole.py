@@ -98,9 +98,10 @@ def _ccx_record(c, rb1: float) -> dict:
     return rec
 
 
-def prepare_ours(case, positions_deg, torque: float, fidelity: str, cache=None, say=None):
+def prepare_ours(case, positions_deg, torque: float, fidelity: str, cache=None, say=None, keep_solver: bool = True):
     """Our planetary model for the check: (SatelliteModel, LoadedModel) with the teeth in mesh over the case's
-    cycle positions and ``positions_deg``, compliance for ``torque`` (N mm)."""
+    cycle positions and ``positions_deg``, compliance for ``torque`` (N mm); ``keep_solver`` as
+    :func:`ltca.planetary.loaded.prepare_satellite`'s."""
     from ..case import FIDELITIES
     from ..cylindrical.loaded_model import Fidelity
     from ..planetary.loaded import positions as cycle_positions, prepare_satellite
@@ -108,7 +109,7 @@ def prepare_ours(case, positions_deg, torque: float, fidelity: str, cache=None, 
     sm = build_satellite_model(case)
     phis = np.unique(np.concatenate([cycle_positions(sm, case.positions), np.radians(positions_deg)]))
     lm = prepare_satellite(sm, Fidelity.from_preset(FIDELITIES[fidelity], case.design.m, slices=4), phis, torque,
-                           case.far_teeth, cache, say)
+                           case.far_teeth, cache, say, keep_solver)
     return sm, lm
 
 
