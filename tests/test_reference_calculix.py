@@ -157,14 +157,23 @@ def _rung_value(ref: dict, quantity: str):
     return ref.get(quantity)
 
 
+def _joined_ladder(rec: dict, key: str) -> list[dict] | None:
+    """The refinement ladder of the position ``key`` (``f"{roll:g}"``), coarsest first, or None without one: the
+    first position's is ``convergence``, continued by its rungs refined by ``--merge`` (``ladders``, whose first
+    entry is the frozen finest rung of ``convergence``); another position refined by ``--merge`` has its own."""
+    first, merged = rec["convergence"], rec.get("ladders", {}).get(key)
+    if f"{first[-1]['roll_deg']:g}" != key:
+        return merged
+    if merged:
+        assert merged[0]["h_contact_um"] == first[-1]["h_contact_um"], "a merged ladder starts at the frozen rung"
+        return first + merged[1:]
+    return first
+
+
 def _position_ladder(rec: dict, ref: dict) -> list[dict]:
-    """A position's refinement ladder, coarsest first (the first position's is ``convergence``, a position
-    refined by ``--merge`` has its own under ``ladders``); its last rung is the position's record."""
-    key = f"{ref['roll_deg']:g}"
-    if key in rec.get("ladders", {}):
-        return rec["ladders"][key]
-    first = rec["convergence"]
-    return first if f"{first[-1]['roll_deg']:g}" == key else [ref]
+    """A position's refinement ladder, coarsest first (:func:`_joined_ladder`; a position never refined: its
+    record alone); its last rung is the position's record."""
+    return _joined_ladder(rec, f"{ref['roll_deg']:g}") or [ref]
 
 
 def converged_estimate(rec: dict, ref: dict, quantity: str) -> tuple[float | None, float | None]:
@@ -222,9 +231,10 @@ def _cases():
 
 
 def _ladder(path: Path, key: str | None) -> list[dict]:
-    """A file's refinement ladder, coarsest first: the first position's (``key`` None) or a merged position's."""
+    """A file's refinement ladder, coarsest first: the first position's (``key`` None, with its rungs merged
+    later) or another merged position's (:func:`_joined_ladder`)."""
     rec = _rec(path)
-    return rec["convergence"] if key is None else rec["ladders"][key]
+    return _joined_ladder(rec, f"{rec['convergence'][-1]['roll_deg']:g}" if key is None else key)
 
 
 def _ladder_note(rec: dict, ref: dict, quantity: str) -> str:
@@ -247,7 +257,9 @@ def _te_refinement(path: Path, key: str | None = None) -> float:
 def _converged_params():
     out = []
     for path in REFERENCES:
-        for key in [None, *_rec(path).get("ladders", {})]:
+        rec = _rec(path)
+        first = f"{rec['convergence'][-1]['roll_deg']:g}"
+        for key in [None, *(k for k in rec.get("ladders", {}) if k != first)]:
             a, b = _ladder(path, key)[-2:]
             change = _te_refinement(path, key)
             marks = [] if abs(change) < TE_CONVERGED else [pytest.mark.xfail(
