@@ -67,10 +67,12 @@ def test_local_synthesis_reproduces_targets_at_m0(setup, side):
     dL, dRn = np.gradient(r.gear_L, r.phi1)[i0], np.gradient(r.gear_Rn, r.phi1)[i0]
     ang = np.arctan2(dRn, dL) - bl.gear.dedendum_angle
     ang = (ang + 0.5 * np.pi) % np.pi - 0.5 * np.pi                 # a line: direction mod 180 deg
-    assert np.rad2deg(abs(ang - tg.eta2)) < 1.0
+    # the local synthesis is exact at M0: measured 2e-5 / 5e-6 deg, m21 within 1e-7, the major axis within 2e-8
+    # (convex / concave); the bounds leave the TCA's numerics room and catch a 1 % error in any target
+    assert np.rad2deg(abs(ang - tg.eta2)) < 0.01
     m21 = 2 * np.polyfit(r.phi1, r.te, 4)[2]
-    assert m21 == pytest.approx(te_curvature(tg.te_magnitude, bl.pinion.z), rel=0.05)
-    assert r.major[i0] == pytest.approx(tg.major_axis, rel=0.10)
+    assert m21 == pytest.approx(te_curvature(tg.te_magnitude, bl.pinion.z), rel=1e-4)
+    assert r.major[i0] == pytest.approx(tg.major_axis, rel=1e-4)
     # the synthesised pinion flank generates over the blank from 0.5 mm above the root cone, no undercut
     # (the row 0.15 mm above the root, in the edge-radius fillet, does not converge: known limitation)
     fl = generate_flank(fc, bl, "pinion", nu=8, nv=9, root_offset=0.5)
