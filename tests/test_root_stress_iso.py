@@ -24,11 +24,14 @@ largest principal fillet stress the LTCA reports for the loaded tooth, over the 
 mesh, extrapolated linearly in the roll angle to the outer point of single contact (where the whole load
 acts, as in ISO).
 
-FZG C14, 200 N m: ISO sigma_F0 = 277.1 MPa pinion, 268.7 MPa gear. ISO's Y_S is an empirical fit, so ISO and a
-converged FE differ by a few per cent for standard teeth (the figure of the literature on FE against ISO 6336-3 is
-not re-derived here). Ours, converged over the fidelities since issue 18 (the read fillets meshed at 0.4 of their
-radius, nodal-averaged stress; fem.fillet) and within 3 % of the whole-gear CalculiX root stress at three positions
-(tests/test_reference_calculix.py), reads below ISO on both members: default pinion -4.4 %, gear -6.3 %; fine
+FZG C14, 200 N m: ISO sigma_F0 = 277.1 MPa pinion, 268.7 MPa gear. ISO's Y_F Y_S is an empirical fit, not a
+stress analysis, so a converged FE need not meet it exactly; issue 18 asks for the bound the literature gives for FE
+against ISO 6336-3 and its source, and none was found in the sources reachable here (stored pages, docs, code and
+issue corpora, searched in sessions 9-11), so no such bound is claimed. What the test guards instead is our measured
+deviation, and our FE root stress is checked independently: converged over the fidelities since issue 18 (the read
+fillets meshed at 0.4 of their radius, nodal-averaged stress; fem.fillet) and within 3 % of the whole-gear CalculiX
+root stress at five positions of FZG C14 and helical C14 (tests/test_reference_calculix.py). Ours reads below ISO
+on both members: default pinion -4.4 %, gear -6.3 %; fine
 (``-m slow``) pinion -4.8 %, gear -5.2 %. Each is guarded at 2.5 % around its measured deviation. (Before issue 18
 the default read +0.5 % / -8.2 % and the fine -0.9 % / -0.7 %: 1.35 mm elements on the 2 mm fillet, the stress of
 one element read at points 0.42 mm apart, not converged: the pinion at the pitch point read 219.9 / 253.1 / 242.0 MPa
