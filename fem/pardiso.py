@@ -99,4 +99,6 @@ def pardiso_factor(Kff: sp.csr_matrix, symmetric: bool):
     # Cholesky factor of an SPD matrix never has; the factorisation itself is unchanged.
     if solver.get_iparm(14) == 0:
         solver.set_iparm(8, 0)
-    return (lambda b: call(33, b)), lambda: solver.free_memory(everything=False)
+    # one matrix per solver handle: phase -1 frees all of its memory (phase 0, the factor only, left about 1.3 kB
+    # per dof resident, measured: 0.09 GB per factorisation of a 68 k dof body, never returned)
+    return (lambda b: call(33, b)), lambda: solver.free_memory(everything=True)
