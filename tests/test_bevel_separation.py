@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from geometry.bevel.blank import design_blank
-from geometry.bevel.design import synthesize_pinion
+from geometry.bevel.design import path_line, synthesize_pinion
 from geometry.bevel.generation import standard_gear_cut
 from geometry.bevel.separation import separation_tca
 from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca
@@ -55,20 +55,16 @@ def test_separation_te_and_zone_agree_with_continuous_tca(pair, side):
 
 
 def _separation_path_and_te(pair: BevelPair, side: str) -> tuple[float, float, set]:
-    """Path angle (deg, the least-squares line of the contact points in the gear axial section from the root-cone
-    line, as :func:`geometry.bevel.design.cycle_metrics` defines it) and TE range (arcsec) over one mesh cycle,
+    """Path angle (deg, :func:`geometry.bevel.design.path_line` of the contact points, as the synthesis's
+    :func:`geometry.bevel.design.cycle_metrics` reads it off the continuous TCA) and TE range (arcsec) over one mesh cycle,
     both read off the separation field on a grid twice the default's (40 x 60, 24 positions per cycle): the path
     inside the transfer points (at a transfer point two pairs tie), the TE over the closed cycle."""
-    bl = pair.blank
     s = separation_tca(pair, side, steps_per_cycle=24, cycles=1.0, grid=(40, 60))
-    half = np.pi / bl.pinion.z
+    half = np.pi / pair.blank.pinion.z
     inside = np.abs(s.phi1) < half * (1 - 1e-9)
-    X = np.stack([s.gear_L[inside], s.gear_Rn[inside]], 1)
-    _, _, vt = np.linalg.svd(X - X.mean(0), full_matrices=False)
-    d = vt[0] if vt[0, 0] >= 0 else -vt[0]
-    angle = np.rad2deg(np.arctan2(d[1], d[0]) - bl.gear.dedendum_angle)
+    angle, _ = path_line(s.gear_L[inside], s.gear_Rn[inside], pair.blank)
     closed = np.abs(s.phi1) <= half * (1 + 1e-9)
-    return float(angle), float(np.ptp(s.te[closed]) / RAD_PER_ARCSEC), set(s.where)
+    return angle, float(np.ptp(s.te[closed]) / RAD_PER_ARCSEC), set(s.where)
 
 
 @pytest.mark.parametrize("d_eta_deg, te_factor", [(0.0, 1.0), (4.0, 1.4), (-4.0, 0.7)],
@@ -82,8 +78,8 @@ def test_synthesis_meets_its_targets_measured_by_the_separation_field(d_eta_deg,
     case = load_bevel_case(CASE)
     bl = design_blank(case["basic"])
     gear = standard_gear_cut(bl)
-    targets = {k: dataclasses.replace(t, eta2=t.eta2 + np.deg2rad(d_eta_deg), te_magnitude=te_factor * t.te_magnitude)
-               for k, t in case["targets"].items()}
+    targets = {k: dataclasses.replace(t, eta2=t.eta2 + np.deg2rad(d_eta_deg),
+                                      te_magnitude=te_factor * t.te_magnitude) for k, t in case["targets"].items()}
     pin, _ = synthesize_pinion(bl, gear, targets, blank_offset=case["blank_offset"])
     for side, t in targets.items():
         angle, te_range, where = _separation_path_and_te(BevelPair(bl, gear, pin), side)

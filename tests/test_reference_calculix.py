@@ -71,14 +71,16 @@ strict xfail of ``test_reference_te_is_converged``), Richardson over the last th
 pinion 69.4 / 71.3 / 74.7 / 73.5 MPa, gear 72.3 / 69.2 / 70.4 / 70.3 MPa (not monotone: the finest rung; within 2 %
 over the last step). +6 deg refined to 100 um by ``--merge`` (0.63 mm fillets, 206 k nodes, ccx 493 s on 2 threads):
 TE 35.760 / 35.589 arcsec (-0.48 %), stiffness 16.80 / 16.88, root stress pinion 74.4 / 75.2, gear 68.0 / 68.2 MPa;
-ours TE +0.18 %, stiffness -0.18 %, root stress pinion +1.5 %, gear -2.8 %. The flank peak is not compared (``unconverged``: 6174 / 4964 / 41934 MPa over the ladder, 14865 MPa at +6
+ours TE +0.18 %, stiffness -0.18 %, root stress pinion +1.5 %, gear -2.8 %. The flank peak is not compared
+(``unconverged``: 6174 / 4964 / 41934 MPa over the ladder, 14865 MPa at +6
 deg): CalculiX's inner face slices hold the tip-edge contact at the ends of the helical contact lines inside the
 face (at 150 um nodal 7 GPa at pinion r 34.2 mm under the gear's tip edge, 5.4 GPa at the pinion tip r 41.2 mm),
 which ours leaves out as edge contact (ours 934 / 933 MPa). Ours when frozen: TE -1.06 / -0.29 %, stiffness +1.08 /
 +0.29 %, shares within 0.016 / 0.003, root stress pinion -4.3 / +2.6 %, gear -2.6 / -2.4 % at 0 / +6 deg; at the
 67 um merge (today's bodies) against the converged estimate at 0 deg: TE 34.707 arcsec -0.60 %, stiffness +0.60 %,
-root stress pinion 71.5 MPa -2.6 %, gear 68.5 MPa -2.5 %, shares within 0.016. Our compliance of this case takes 21-88 s (52 s at
-freeze), shared with the session's ``helical_lm``; its comparisons are in the fast suite (``SLOW_COMPLIANCE_S``).
+root stress pinion 71.5 MPa -2.6 %, gear 68.5 MPa -2.5 %, shares within 0.016. Our compliance of this case takes
+21-88 s (52 s at freeze), shared with the session's ``helical_lm``; its comparisons are in the fast suite
+(``SLOW_COMPLIANCE_S``).
 """
 from __future__ import annotations
 
@@ -89,6 +91,7 @@ import numpy as np
 import pytest
 
 from conftest import ROOT
+from ltca.verify.whole_merge import ladder_key
 
 REFERENCES = sorted((Path(__file__).resolve().parent / "reference").glob("*_calculix_whole.json"))
 BOUNDS = {"te": 0.02, "stiffness": 0.02, "share": 0.03, "flank_pressure": 0.05, "root_pinion": 0.05,
@@ -161,12 +164,19 @@ def _rung_value(ref: dict, quantity: str):
     return ref.get(quantity)
 
 
+def _first_key(rec: dict) -> str:
+    """The ladder key (:func:`ltca.verify.whole_merge.ladder_key`) of the file's first position, the one
+    ``convergence`` refines."""
+    return ladder_key(rec["convergence"][-1]["roll_deg"])
+
+
 def _joined_ladder(rec: dict, key: str) -> list[dict] | None:
-    """The refinement ladder of the position ``key`` (``f"{roll:g}"``), coarsest first, or None without one: the
-    first position's is ``convergence``, continued by its rungs refined by ``--merge`` (``ladders``, whose first
-    entry is the frozen finest rung of ``convergence``); another position refined by ``--merge`` has its own."""
+    """The refinement ladder of the position ``key`` (:func:`ltca.verify.whole_merge.ladder_key`), coarsest first,
+    or None without one: the first position's is ``convergence``, continued by its rungs refined by ``--merge``
+    (``ladders``, whose first entry is the frozen finest rung of ``convergence``); another position refined by
+    ``--merge`` has its own."""
     first, merged = rec["convergence"], rec.get("ladders", {}).get(key)
-    if f"{first[-1]['roll_deg']:g}" != key:
+    if _first_key(rec) != key:
         return merged
     if merged:
         assert merged[0]["h_contact_um"] == first[-1]["h_contact_um"], "a merged ladder starts at the frozen rung"
@@ -177,7 +187,7 @@ def _joined_ladder(rec: dict, key: str) -> list[dict] | None:
 def _position_ladder(rec: dict, ref: dict) -> list[dict]:
     """A position's refinement ladder, coarsest first (:func:`_joined_ladder`; a position never refined: its
     record alone); its last rung is the position's record."""
-    return _joined_ladder(rec, f"{ref['roll_deg']:g}") or [ref]
+    return _joined_ladder(rec, ladder_key(ref["roll_deg"])) or [ref]
 
 
 def converged_estimate(rec: dict, ref: dict, quantity: str) -> tuple[float | None, float | None]:
@@ -238,12 +248,12 @@ def _ladder(path: Path, key: str | None) -> list[dict]:
     """A file's refinement ladder, coarsest first: the first position's (``key`` None, with its rungs merged
     later) or another merged position's (:func:`_joined_ladder`)."""
     rec = _rec(path)
-    return _joined_ladder(rec, f"{rec['convergence'][-1]['roll_deg']:g}" if key is None else key)
+    return _joined_ladder(rec, _first_key(rec) if key is None else key)
 
 
 def _ladder_note(rec: dict, ref: dict, quantity: str) -> str:
     """The CalculiX ladder of a quantity at a position refined by ``--merge`` (``ladders``), for an xfail reason."""
-    ladder = rec.get("ladders", {}).get(f"{ref['roll_deg']:g}")
+    ladder = rec.get("ladders", {}).get(ladder_key(ref["roll_deg"]))
     if not ladder or quantity != "flank_pressure":
         return ""
     values = " / ".join(f"{e['flank_pressure']:.0f}" for e in ladder)
@@ -262,8 +272,7 @@ def _converged_params():
     out = []
     for path in REFERENCES:
         rec = _rec(path)
-        first = f"{rec['convergence'][-1]['roll_deg']:g}"
-        for key in [None, *(k for k in rec.get("ladders", {}) if k != first)]:
+        for key in [None, *(k for k in rec.get("ladders", {}) if k != _first_key(rec))]:
             a, b = _ladder(path, key)[-2:]
             change = _te_refinement(path, key)
             marks = [] if abs(change) < TE_CONVERGED else [pytest.mark.xfail(
@@ -301,7 +310,7 @@ def test_reference_records_its_provenance(path):
                 assert abs(member["at"]["z_mm"]) <= 0.45 * face_width + 1e-9
                 assert member["surface"]["max"] > 0
     for key, ladder in rec.get("ladders", {}).items():        # positions refined by --merge: coarsest first
-        p = next(p for p in rec["positions"] if f"{p['roll_deg']:g}" == key)
+        p = next(p for p in rec["positions"] if ladder_key(p["roll_deg"]) == key)
         assert len(ladder) >= 2 and all(e["roll_deg"] == p["roll_deg"] and len(e["deck_sha256"]) == 64 for e in ladder)
         assert all(a["h_contact_um"] > b["h_contact_um"] for a, b in zip(ladder, ladder[1:]))
         assert {k: v for k, v in p.items() if k != "ours_at_freeze"} == ladder[-1]

@@ -120,10 +120,9 @@ def test_observe_with_fewer_rows_than_loads_solves_for_the_rows(beam, method):
     fac.release()
 
 
-
 def test_body_without_solver_frees_the_factor_and_keeps_the_compliance(beam):
-    """``BodyCompliance.without_solver``: the back-end factor is released (its solve no longer runs), the copy has no
-    mesh, factor or patch, and every figure the contact reads (C, root stress) is the same object."""
+    """``BodyCompliance.without_solver``: the back-end factor is released at once (not when the collector gets to
+    it), the copy has no mesh, factor or patch, and every figure the contact reads (C, root stress) is the same object."""
     from fem.compliance import BodyCompliance
     if "pardiso" not in available_methods():
         pytest.skip("PARDISO (pypardiso) missing: the other back-ends hold their factor in Python")

@@ -34,7 +34,31 @@ from .machine import FlankCut, MemberCut
 from .synthesis import FlankTarget, local_synthesis
 from .tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, TCAResult, tca
 
-__all__ = ["cycle_metrics", "control_point_design", "synthesize_pinion"]
+__all__ = ["path_line", "cycle_metrics", "control_point_design", "synthesize_pinion"]
+
+
+def path_line(L: np.ndarray, Rn: np.ndarray, blank: BevelBlank) -> tuple[float, float]:
+    """Least-squares line of contact points in the gear axial section.
+
+    Parameters
+    ----------
+    L, Rn : ndarray (m,)
+        The points' coordinates in the gear axial section, mm (:func:`geometry.bevel.tca.tca`'s ``gear_L``,
+        ``gear_Rn``, or the separation field's).
+    blank : BevelBlank
+
+    Returns
+    -------
+    angle_deg : float
+        The line's direction from the gear's root-cone line, positive towards the top (seed 000's eta2).
+    straightness_mm : float
+        Largest distance of the points from the line.
+    """
+    X = np.stack([L, Rn], 1)
+    X = X - X.mean(0)
+    _, _, vt = np.linalg.svd(X, full_matrices=False)
+    d = vt[0] if vt[0, 0] >= 0 else -vt[0]
+    return float(np.rad2deg(np.arctan2(d[1], d[0]) - blank.gear.dedendum_angle)), float(np.max(np.abs(X @ vt[1])))
 
 
 def cycle_metrics(r: TCAResult, blank: BevelBlank) -> dict:
@@ -57,16 +81,12 @@ def cycle_metrics(r: TCAResult, blank: BevelBlank) -> dict:
     c = np.polyfit(p, te, 2)
     fit = np.polyval(c, p)
     r2 = 1.0 - np.sum((te - fit) ** 2) / max(np.sum((te - te.mean()) ** 2), 1e-300)
-    X = np.stack([r.gear_L[sel], r.gear_Rn[sel]], 1)
-    X = X - X.mean(0)
-    _, _, vt = np.linalg.svd(X, full_matrices=False)
-    d = vt[0] if vt[0, 0] >= 0 else -vt[0]
+    angle, straightness = path_line(r.gear_L[sel], r.gear_Rn[sel], blank)
     i0 = int(np.argmin(np.abs(r.phi1)))
     return dict(te_amplitude_arcsec=float(-c[0] * half ** 2 / RAD_PER_ARCSEC),
                 te_transfer_arcsec=[float(te[0] / RAD_PER_ARCSEC), float(te[-1] / RAD_PER_ARCSEC)],
                 te_r2=float(r2),
-                path_angle_deg=float(np.rad2deg(np.arctan2(d[1], d[0]) - blank.gear.dedendum_angle)),
-                path_straightness_mm=float(np.max(np.abs(X @ vt[1]))),
+                path_angle_deg=angle, path_straightness_mm=straightness,
                 ellipse_major_mm=float(r.major[i0]), contact_ratio=r.contact_ratio)
 
 
