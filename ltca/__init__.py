@@ -1,15 +1,35 @@
-"""ltca: the analyses of gear pairs, one subpackage per analysis, with the case reader, the command line and the
-generic results writer at the top.
+"""ltca: finite-element loaded tooth contact analysis of gear pairs (cylindrical, spiral bevel, planetary).
 
-    case.py, errors.py   case files (TOML schema, validation, units) and the user-facing errors
-    results.py           result files written atomically (generic; no analysis imports here)
-    cli.py               the ``ltca`` command (imports every analysis, lazily)
-    cylindrical/         loaded TCA of cylindrical pairs (model, tca, compliance set-up, contact, results, run)
-    bevel/               spiral bevel case, pinion synthesis and TCA
-    drivetrain/          deflection budgets, backlash, machine-chain ratio errors
-    verify/              validation, CalculiX cross-check, convergence, bench
+A library first; the ``ltca`` command is a thin layer over it::
 
-Imports geometry and fem, never the other way. Inside ltca: the top-level modules other than cli import no
-subpackage; drivetrain and verify may import cylindrical; no import circle (tests/test_layout.py).
+    import ltca
+    case = ltca.load_case("fzg_c14").with_values({"assembly.lead_misalignment_um": 10.0})
+    result = ltca.run(case, torques_nm=[100.0, 200.0])
+    result.dataset.ltca.plot_te(ax=ax)
+    result.figures[0].te_loaded_ptp_arcsec
+
+Layers: ``geometry`` (tooth surfaces, kinematics) <- ``fem`` (meshes, elasticity, compliance, contact) <- ``ltca``
+(cases, analyses, results, command line). Inside ltca:
+
+    cases.py       the case layer: one Case record for every kind, load_case, with_values
+    core.py        run(case) for every gear kind (each kind supplies plan / execute / result / write)
+    results.py     LoadedResult, the one result vocabulary, open_result
+    accessor.py    plots on a result's dataset (``ds.ltca``)
+    driver.py      the run folder of ``ltca run``: lock, run.json, resume, files, console tables
+    cli.py         the ``ltca`` command
+    cylindrical/, bevel/, planetary/   the gear kinds; drivetrain/, design/, study/, verify/ the other commands
 """
 __version__ = "0.1.0"
+
+__all__ = ["Case", "load_case", "run", "LoadedResult", "TorqueFigures", "open_result", "__version__"]
+
+_LAZY = {"Case": "cases", "load_case": "cases", "run": "core", "LoadedResult": "results",
+         "TorqueFigures": "results", "open_result": "results"}
+
+
+def __getattr__(name: str):
+    """The public API, imported on first use (``ltca --help`` does not import xarray or gmsh)."""
+    if name in _LAZY:
+        import importlib
+        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module 'ltca' has no attribute {name!r}")

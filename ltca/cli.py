@@ -26,21 +26,9 @@ def _cmd_forming(a: argparse.Namespace) -> int:
 
 
 def _cmd_run(a: argparse.Namespace) -> int:
-    from .case import read_toml
-    if "bevel" in read_toml(a.case):
-        from .bevel.analysis import run_bevel_ltca
-        run_bevel_ltca(a.case, out=a.out, positions=a.positions, fidelity=a.fidelity, torques=a.torque,
-                       progress=not a.quiet, cache=a.cache)
-        return 0
-    if _planetary(a.case):
-        from .planetary.run import run_planetary
-        run_planetary(a.case, out=a.out, fidelity=a.fidelity, n_positions=a.positions, progress=not a.quiet,
-                      cache=a.cache, torques_nm=a.torque)
-        return 0
-    from .cylindrical.run import run_case
-    run_case(a.case, out=a.out, fidelity=a.fidelity, positions=a.positions, progress=not a.quiet,
-             cache=a.cache, resume=a.resume, max_output_gb=a.max_output_gb, torques=a.torque,
-             paraview_steps=a.paraview_steps)
+    from .driver import run_to_dir
+    run_to_dir(a.case, a.out, fidelity=a.fidelity, positions=a.positions, progress=not a.quiet, cache=a.cache,
+               resume=a.resume, max_output_gb=a.max_output_gb, torques=a.torque, paraview_steps=a.paraview_steps)
     return 0
 
 
@@ -246,7 +234,7 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--max-output-gb", type=float, default=2.0, metavar="GB",
                    help="refuse a run whose results and memory are estimated above this (default 2 GB)")
     r.add_argument("--cache", default=None, help="directory for the mesh cache (default: none, cold run)")
-    r.add_argument("--paraview-steps", type=_nonnegative_int, default=10, metavar="N",
+    r.add_argument("--paraview-steps", type=_nonnegative_int, default=None, metavar="N",
                    help="positions of the first torque in the ParaView series paraview.pvd (displacement, stress, "
                         "flank pressure), spread over the cycle with the pitch position; 0: none, more than the "
                         "positions: all (default 10; FZG C14: about 0.15 s and 1.3 MB per position)")
@@ -397,6 +385,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
+    import matplotlib
+    matplotlib.use("Agg")       # the command line writes files; the library never picks a backend
     args = build_parser().parse_args(argv)
     try:
         return int(args.func(args) or 0)

@@ -29,14 +29,15 @@ from typing import Any, Iterator
 from .errors import CaseError
 
 __all__ = ["check_out_dir", "RunDir", "atomic_path", "write_json_atomic", "PositionStore", "finite_json",
-           "read_status", "OUTPUTS", "staging", "signature_of"]
+           "read_status", "OUTPUTS", "staging", "signature_of", "write_json", "write_bytes_atomic"]
 
 #: results of ``ltca run`` that a fresh start removes (stale results of an earlier run)
 OUTPUTS = ("summary.json", "results.nc", "te.png", "load_sharing.png", "bearing_pattern.png", "root_stress.png",
            "pinion_loaded.vtu", "gear_loaded.vtu", "positions.jsonl", "te_unloaded.png", "te_ptp.png",
-           "te_harmonics.png", "report.html", "bearing_pattern_diameter.png", "paraview.pvd")
+           "te_harmonics.png", "report.html", "bearing_pattern_diameter.png", "paraview.pvd", "load_sharing.csv",
+           "torques.csv")
 #: name patterns of results that a fresh start removes too (the ParaView series' parts)
-OUTPUT_GLOBS = ("paraview_*.vtu",)
+OUTPUT_GLOBS = ("paraview_*.vtu", "bearing_pattern_*Nm.vtu", "bearing_pattern_*Nm.png")
 LOCK = ".ltca.lock"
 STATUS = "run.json"
 
@@ -84,6 +85,11 @@ def write_bytes_atomic(path: str | Path, data: bytes) -> None:
 def write_json_atomic(path: str | Path, data: Any) -> None:
     """Strict JSON (NaN/inf as null), written atomically."""
     write_bytes_atomic(path, json.dumps(finite_json(data), indent=2, allow_nan=False).encode())
+
+
+def write_json(path: str | Path, data: Any) -> None:
+    """JSON as Python writes it (NaN kept), written atomically."""
+    write_bytes_atomic(path, json.dumps(data, indent=2).encode())
 
 
 def check_out_dir(out: str | Path, option: str = "--out") -> Path:

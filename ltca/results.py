@@ -1,15 +1,121 @@
-"""Result files of any analysis, written atomically (the generic writer; each analysis builds its own
-records, e.g. :mod:`ltca.cylindrical.results`). Imports nothing of ours."""
+"""One result type for every gear kind: :class:`LoadedResult`, and the one vocabulary of its figures.
+
+Vocabulary (the same names and units in ``summary.json``, ``results.nc``, the plots and this API):
+
+=================================  ==========  ==================================================================
+``te_loaded``, ``te_unloaded``     arcsec      transmission error of the driven member: its lag behind the
+                                               rigid-body position, positive when it lags
+``te_loaded_ptp_arcsec``           arcsec      peak-to-peak of the loaded TE over the cycle
+``te_loaded_mean_arcsec``          arcsec      mean of the loaded TE over the cycle
+``max_flank_pressure_mpa``         MPa         largest contact pressure away from edge contact (converges)
+``max_contact_pressure_mpa``       MPa         largest cell pressure, edge contact included (mesh-dependent at
+                                               a sharp edge)
+``max_root_stress_mpa``            MPa         largest principal fillet stress, per member
+``mesh_stiffness_mean_n_per_um``   N/um        mean mesh stiffness of the whole face (normal load over the
+                                               approach)
+``mesh_stiffness_mean_n_per_mm_um`` N/(mm um)  the same per face width (cylindrical and bevel pairs)
+``converged``, ``max_torque_residual``         every position's torque balance met (relative residual)
+=================================  ==========  ==================================================================
+
+Every dataset has the coordinates ``torque`` (N m, pinion; or satellite for a planetary pair) and ``cycle``
+(position in mesh cycles, 0 at the pitch or mean point) beside its kind's own (``position``: roll in deg for
+cylindrical pairs).
+"""
 from __future__ import annotations
 
-import json
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
-__all__ = ["write_json"]
+import xarray as xr
+
+from . import accessor as _accessor  # noqa: F401  (registers the ``ltca`` dataset accessor)
+from .cases import Case
+
+__all__ = ["LoadedResult", "TorqueFigures", "open_result", "TE_SIGN"]
+
+#: the sign convention of every TE in the project
+TE_SIGN = "TE is the driven member's lag behind its rigid-body position: positive when it lags"
 
 
-def write_json(path: Path, data: dict) -> None:
-    """Write JSON atomically (temporary file, then rename)."""
-    tmp = Path(str(path) + ".tmp")
-    tmp.write_text(json.dumps(data, indent=2))
-    tmp.replace(path)
+@dataclass(frozen=True)
+class TorqueFigures:
+    """Headline figures of one torque, in the vocabulary of the module docstring (NaN where a kind has none)."""
+    torque_nm: float
+    te_loaded_ptp_arcsec: float
+    te_unloaded_ptp_arcsec: float
+    te_loaded_mean_arcsec: float
+    max_flank_pressure_mpa: float
+    max_contact_pressure_mpa: float
+    max_root_stress_pinion_mpa: float
+    max_root_stress_gear_mpa: float
+    mesh_stiffness_mean_n_per_um: float
+    mesh_stiffness_mean_n_per_mm_um: float
+    converged: bool
+    max_torque_residual: float
+
+
+@dataclass(frozen=True)
+class LoadedResult:
+    """The loaded analysis of one case at its torques.
+
+    Attributes
+    ----------
+    case : Case
+        The case analysed (torques as run).
+    dataset : xarray.Dataset
+        Per torque and position (and contact grid, tooth, ...): see the module's vocabulary. Plots:
+        ``result.dataset.ltca.plot_te(ax=ax)`` (:mod:`ltca.accessor`).
+    summary : dict
+        The figures of ``summary.json``: the first torque's at the top level, every torque's in ``"torques"``.
+    figures : tuple of TorqueFigures
+        The headline figures per torque, typed.
+    timings : dict
+        Wall time per stage (s).
+    """
+    case: Case
+    dataset: xr.Dataset
+    summary: dict
+    figures: tuple[TorqueFigures, ...]
+    timings: dict
+    _state: Any = field(default=None, repr=False, compare=False)
+
+    @property
+    def converged(self) -> bool:
+        """Every position of every torque met its torque balance."""
+        return all(f.converged for f in self.figures)
+
+    @property
+    def max_torque_residual(self) -> float:
+        """The largest relative torque-balance residual over torques and positions."""
+        return max(f.max_torque_residual for f in self.figures)
+
+    @property
+    def warnings(self) -> list[str]:
+        """Design, sampling, pressure and convergence warnings of the run."""
+        return list(self.summary.get("warnings", []))
+
+    def at(self, torque_nm: float) -> TorqueFigures:
+        """The figures of the torque closest to ``torque_nm`` (N m)."""
+        return min(self.figures, key=lambda f: abs(f.torque_nm - torque_nm))
+
+    def save(self, out: str | Path, *, report: bool = True, paraview_steps: int = 10) -> Path:
+        """Write what ``ltca run`` writes into the folder ``out`` (created; locked while writing; every file
+        atomic; ``run.json`` records the status). Returns the folder."""
+        from .core import save_result
+        return save_result(self, out, report=report, paraview_steps=paraview_steps)
+
+
+def open_result(out: str | Path) -> tuple[xr.Dataset, dict]:
+    """Read a saved run back: (the dataset of ``results.nc``, loaded into memory; the ``summary.json`` dict)."""
+    import json
+
+    from .errors import CaseError
+    out = Path(out)
+    nc, js = out / "results.nc", out / "summary.json"
+    for p in (nc, js):
+        if not p.is_file():
+            raise CaseError("out", str(out), f"a folder written by ltca run or LoadedResult.save ({p.name} missing)")
+    with xr.open_dataset(nc, engine="h5netcdf") as ds:
+        data = ds.load()
+    return data, json.loads(js.read_text())

@@ -40,7 +40,7 @@ def _support_nodes(mesh) -> np.ndarray:
 
 def test_case_mounting_is_read_and_defaults_follow_the_blank(pair):
     case = load_bevel_case(CASE)
-    sup = case["mounting"].supports(pair.blank)
+    sup = case.mounting.supports(pair.blank)
     assert sup == {"pinion": ("seat", 9.0), "gear": ("face", 48.07)}
     # defaults: 0.45 x the toe's root diameter (9.0 mm here), 1.2 whole depths behind the heel root along the back
     # cone (48.07 mm here): the shipped values are the defaults of this pair, to rounding

@@ -19,9 +19,9 @@ CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.tom
 @pytest.fixture(scope="module")
 def pair():
     case = load_bevel_case(CASE)
-    bl = design_blank(case["basic"])
+    bl = design_blank(case.basic)
     gear = standard_gear_cut(bl)
-    pin, _ = synthesize_pinion(bl, gear, case["targets"], blank_offset=case["blank_offset"])
+    pin, _ = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
     return BevelPair(bl, gear, pin)
 
 
@@ -76,11 +76,11 @@ def test_synthesis_meets_its_targets_measured_by_the_separation_field(d_eta_deg,
     (working / coast) at the case's targets, -0.14 / +0.07 and -0.13 / +0.04 deg perturbed; TE within 0.02 %."""
     import dataclasses
     case = load_bevel_case(CASE)
-    bl = design_blank(case["basic"])
+    bl = design_blank(case.basic)
     gear = standard_gear_cut(bl)
     targets = {k: dataclasses.replace(t, eta2=t.eta2 + np.deg2rad(d_eta_deg),
-                                      te_magnitude=te_factor * t.te_magnitude) for k, t in case["targets"].items()}
-    pin, _ = synthesize_pinion(bl, gear, targets, blank_offset=case["blank_offset"])
+                                      te_magnitude=te_factor * t.te_magnitude) for k, t in case.targets.items()}
+    pin, _ = synthesize_pinion(bl, gear, targets, blank_offset=case.blank_offset)
     for side, t in targets.items():
         angle, te_range, where = _separation_path_and_te(BevelPair(bl, gear, pin), side)
         assert where == {"interior"}

@@ -138,13 +138,12 @@ def compare_forming(design: SatelliteDesign = SatelliteDesign(), hob: HobThreePa
 
 def plot_forming(cmp: FormingComparison, path) -> None:
     """PNG: the three teeth overlaid (top) and the deviations of (a), (b) from (c) against radius (bottom)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
     style = {"special_hob": ("k", "(c) special hob, 1 pass"), "hob_three_pass": ("C0", "(a) standard hob, 3 passes"),
              "disk_cutter": ("C3", "(b) disk cutter, x = %.2f" % cmp.teeth["disk_cutter"].tool.x_plunge)}
-    fig, (ax, bx) = plt.subplots(2, 1, figsize=(7, 9), gridspec_kw={"height_ratios": [3, 2]})
+    fig = Figure(figsize=(7, 9))
+    ax, bx = fig.subplots(2, 1, gridspec_kw={"height_ratios": [3, 2]})
     for name, t in cmp.teeth.items():
         c, lab = style[name]
         ax.plot(t.profile.xy[:, 0], t.profile.xy[:, 1], color=c, lw=1.2 if name == "special_hob" else 0.9,
@@ -167,4 +166,3 @@ def plot_forming(cmp: FormingComparison, path) -> None:
     bx.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=130)
-    plt.close(fig)

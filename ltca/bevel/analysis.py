@@ -1,35 +1,37 @@
-"""Spiral bevel ``ltca run``: pinion synthesis, both bodies' compliance, the loaded contact over a mesh cycle at
-every torque of the case (working flank for positive, coast flank for negative pinion torques), and the outputs
-(:mod:`ltca.bevel.results`): summary.json, results.nc, bearing_pattern_*.vtu and the plots.
+"""The loaded analysis of a spiral bevel pair: :func:`plan` (validate), :func:`execute` (pinion synthesis, each
+loaded flank's compliance once, the loaded contact over a mesh cycle at every torque: working flank for positive,
+coast flank for negative pinion torques); the results and files are :mod:`ltca.bevel.results`.
 """
 from __future__ import annotations
 
-import sys
 import time
-from pathlib import Path
+from dataclasses import dataclass
 
 import numpy as np
 
 from geometry.bevel.blank import design_blank
 from geometry.bevel.design import synthesize_pinion
 from geometry.bevel.generation import standard_gear_cut
+from geometry.bevel.tca import RAD_PER_ARCSEC as ARCSEC
 from geometry.bevel.tca import Assembly, BevelPair
 
+from ..errors import CaseError
 from ..validation import DesignError
-from .case import load_bevel_case
+from .case import BevelCase
 from .loaded import BevelPosition, solve_position
 from .loaded_model import BevelBodies, BevelFidelity, loaded_model, prepare_bodies
 
-__all__ = ["build_pair", "cycle_positions", "analyse_torque", "run_bevel_ltca"]
+__all__ = ["build_pair", "cycle_positions", "analyse_torque", "BevelPlan", "BevelRun", "plan", "execute",
+           "run_bevel_ltca"]
 
 FLANK = {"concave": "working", "convex": "coast"}
 
 
-def build_pair(case: dict) -> BevelPair:
+def build_pair(case: BevelCase) -> BevelPair:
     """The gear (standard cut) and the pinion synthesised for the case's targets."""
-    bl = design_blank(case["basic"])
+    bl = design_blank(case.basic)
     gear = standard_gear_cut(bl)
-    pin, _ = synthesize_pinion(bl, gear, case["targets"], blank_offset=case["blank_offset"])
+    pin, _ = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
     return BevelPair(bl, gear, pin)
 
 
@@ -38,84 +40,124 @@ def cycle_positions(n: int, z1: int) -> np.ndarray:
     return (np.arange(n) / n - 0.5) * 2 * np.pi / z1
 
 
-def analyse_torque(lm, phi: np.ndarray, torque_nm: float, progress: bool = False) -> list[BevelPosition]:
-    """The loaded contact at the pinion angles ``phi`` under |torque_nm| (N m) on the model's flank."""
+def analyse_torque(lm, phi: np.ndarray, torque_nm: float, progress=None, store=None, it: int = 0,
+                   lines: list | None = None) -> list[BevelPosition]:
+    """The loaded contact at the pinion angles ``phi`` under |torque_nm| (N m) on the model's flank.
+
+    ``progress`` (a callable) receives a line per position; ``store`` (:class:`ltca.outputs.PositionStore`) keeps
+    each finished position and takes over those an interrupted run finished (torque index ``it``)."""
     out = []
     t0 = time.perf_counter()
     for k, p in enumerate(phi):
-        out.append(solve_position(lm, float(p), abs(torque_nm) * 1e3))
+        old = store.load(it, k) if store is not None else None
+        if old is not None:
+            out.append(old)
+            store.taken_over += 1
+        else:
+            out.append(solve_position(lm, float(p), abs(torque_nm) * 1e3))
+        r = out[-1]
+        line = {"torque_nm": torque_nm, "phi1_deg": float(np.degrees(r.phi1)), "te_loaded_arcsec": -r.te / ARCSEC,
+                "max_pressure_mpa": float(r.max_pressure), "torque_residual": float(r.torque_residual)}
+        if lines is not None:
+            lines.append(line)
+        if store is not None and old is None:
+            store.save(it, k, r, line)
+            store.computed += 1
         if progress:
-            r = out[-1]
-            print(f"  {FLANK[lm.side]} {torque_nm:g} N m: position {k + 1}/{len(phi)}  TE {r.te / 4.8481368e-6:8.2f} "
-                  f"arcsec  p_max {r.max_pressure:7.0f} MPa  ({time.perf_counter() - t0:.1f} s)", file=sys.stderr)
+            progress(f"{FLANK[lm.side]} {torque_nm:g} N m: position {k + 1}/{len(phi)}  TE {-r.te / ARCSEC:8.2f} "
+                     f"arcsec  p_max {r.max_pressure:7.0f} MPa  ({time.perf_counter() - t0:.1f} s)")
     return out
 
 
-def run_bevel_ltca(case_path: str, out: str = "out", positions: int | None = None, fidelity: str | None = None,
-                   torques: list[float] | None = None, progress: bool = True, cache: str | None = None,
-                   assembly: Assembly | None = None) -> dict:
-    """Synthesise, mesh, load and solve a bevel case over one mesh cycle per torque; write the outputs.
+@dataclass(frozen=True)
+class BevelPlan:
+    """A validated bevel run: the case, its torques (N m), positions per cycle, fidelity and assembly errors."""
+    case: object
+    torques_nm: tuple[float, ...]
+    positions: int
+    fid: BevelFidelity
+    asm: Assembly
+    warnings: tuple[str, ...] = ()
 
-    Parameters
-    ----------
-    case_path : str
-        TOML case with [bevel] and [load] (pinion torque_nm, a number or a list; the sign picks the flank).
-    out : str
-        Output directory.
-    positions, fidelity, torques : optional
-        Override [analysis] positions / fidelity and [load] torque_nm.
-    cache : str, optional
-        Mesh cache directory.
-    assembly : Assembly, optional
-        Overrides the case's [assembly].
+    @property
+    def fidelity_name(self) -> str:
+        return self.fid.name
 
-    Returns
-    -------
-    dict
-        The summary (also written to ``summary.json``).
-    """
-    case = load_bevel_case(case_path)
-    tq = tuple(torques) if torques else case["torques"]
+
+@dataclass
+class BevelRun:
+    """What :func:`execute` found: the pair, the loaded models and results per flank and torque, timings."""
+    plan: BevelPlan
+    pair: BevelPair
+    runs: dict
+    timings: dict
+    computed: int = 0
+    taken_over: int = 0
+
+
+def plan(case, fidelity: str | None = None, positions: int | None = None, torques_nm=None,
+         max_output_gb: float = 2.0, file: str | None = None) -> BevelPlan:
+    """Validate a bevel run's settings (no synthesis, no FE work)."""
+    if torques_nm is not None:
+        tq = []
+        for i, t in enumerate(torques_nm):
+            if isinstance(t, bool) or not isinstance(t, (int, float)) or not np.isfinite(t) or t == 0 \
+                    or abs(t) > 1e5:
+                raise CaseError(f"--torque[{i}]", t, "a non-zero pinion torque in [-1e5, 1e5] N m (the sign picks "
+                                "the flank)", file)
+            tq.append(float(t))
+        if len(set(tq)) != len(tq):
+            raise CaseError("--torque", list(torques_nm), "distinct torques", file)
+        tq = tuple(tq)
+    else:
+        tq = case.torques
     if not tq:
         raise DesignError("no torque to analyse", ("load.torque_nm",), "add [load] torque_nm = [..] (N m, pinion)",
-                          file=str(case_path))
-    n = positions or case["positions"]
-    fid = BevelFidelity.named(fidelity or case["fidelity"])
-    asm = assembly or Assembly(**case["assembly"])
-    d = Path(out)
-    d.mkdir(parents=True, exist_ok=True)
+                          file=file)
+    n = positions or case.positions
+    if not 4 <= n <= 400:
+        raise CaseError("--positions", n, "an integer in [4, 400] (as analysis.positions)", file)
+    fid_name = fidelity or case.fidelity
+    if fid_name not in ("coarse", "default", "fine"):
+        raise CaseError("--fidelity", fid_name, "one of ['coarse', 'default', 'fine']", file)
+    return BevelPlan(case, tq, n, BevelFidelity.named(fid_name), Assembly(**case.assembly))
+
+
+def execute(p: BevelPlan, progress=None, cache: str | None = None, store=None) -> BevelRun:
+    """Synthesise the pinion, compute each loaded flank's compliance once, solve every torque over the cycle."""
+    case = p.case
     timings = {}
     t0 = time.perf_counter()
     pair = build_pair(case)
     timings["synthesis"] = time.perf_counter() - t0
-    say = (lambda m: print(m, file=sys.stderr)) if progress else None
     bodies: dict[str, BevelBodies] = {}
-    runs = {}
-    for T in tq:
+    runs, lines = {}, []
+    for it, T in enumerate(p.torques_nm):
         side = "concave" if T > 0 else "convex"
         if side not in bodies:
             t1 = time.perf_counter()
-            bodies[side] = prepare_bodies(pair, side, fid, case["young"], case["poisson"], cache, say,
-                                          mounting=case["mounting"])
+            bodies[side] = prepare_bodies(pair, side, p.fid, case.young, case.poisson, cache, progress,
+                                          mounting=case.mounting)
             timings[f"compliance_{FLANK[side]}"] = time.perf_counter() - t1
             t1 = time.perf_counter()
-            runs[side] = {"lm": loaded_model(pair, bodies[side], asm)}
+            runs[side] = {"lm": loaded_model(pair, bodies[side], p.asm)}
             timings[f"reference_{FLANK[side]}"] = time.perf_counter() - t1
         t1 = time.perf_counter()
-        phi = cycle_positions(n, pair.blank.pinion.z)
-        runs[side][T] = analyse_torque(runs[side]["lm"], phi, T, progress)
+        phi = cycle_positions(p.positions, pair.blank.pinion.z)
+        runs[side][T] = analyse_torque(runs[side]["lm"], phi, T, progress, store, it, lines)
         timings[f"torque_{T:g}"] = time.perf_counter() - t1
-    from .results import write_outputs
-    summary = write_outputs(d, case, pair, asm, fid, runs, tq, timings)
-    print(f"Spiral bevel LTCA: {case['name']} ({fid.name}, {n} positions per cycle, assembly E {asm.E:g} P {asm.P:g} "
-          f"G {asm.G:g} mm)")
-    print(f"{'torque N m':>10s} {'flank':8s} {'TE p-p loaded':>13s} {'unloaded':>9s} {'p int MPa':>10s} "
-          f"{'p edge MPa':>10s} {'max share':>9s} {'root MPa':>9s} {'k N/um':>7s}  edges")
-    for T, t in summary["torques"].items():
-        print(f"{float(T):10g} {t['flank']:8s} {t['te_pp_loaded_arcsec']:13.2f} {t['te_pp_unloaded_arcsec']:9.2f} "
-              f"{t['peak_pressure_interior_mpa']:10.0f} {t['peak_pressure_mpa']:10.0f} {t['max_pair_share']:9.3f} "
-              f"{t['root_stress_pinion_mpa']:9.0f} {t['mesh_stiffness_mean_n_per_um']:7.0f}  "
-              f"{', '.join(t['edge_locations']) or '-'}")
-    print("TE in arcsec; p int: peak pressure away from the flank edges (its convergence: ltca convergence); "
-          "p edge: with the edge cells (singular at a sharp edge, grows as the cells shrink)")
-    return summary
+    run = BevelRun(p, pair, runs, timings)
+    if store is not None:
+        store.rewrite_log(lines)
+        run.computed, run.taken_over = store.computed, store.taken_over
+    return run
+
+
+def run_bevel_ltca(case_path: str, out: str = "out", positions: int | None = None, fidelity: str | None = None,
+                   torques: list[float] | None = None, progress: bool = True, cache: str | None = None,
+                   resume: bool = False) -> dict:
+    """``ltca run`` of a bevel case file into the run folder ``out`` (:func:`ltca.driver.run_to_dir`); returns the
+    summary as written."""
+    from ..driver import run_to_dir
+    return run_to_dir(case_path, out, fidelity=fidelity, positions=positions, progress=progress, cache=cache,
+                      torques=torques, resume=resume)

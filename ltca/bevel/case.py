@@ -5,6 +5,7 @@ Case units: mm, deg, arcsec; converted once here to mm and rad.  Mistakes raise
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -17,7 +18,7 @@ from ..errors import CaseError
 from ..validation import DesignError, Int, List, Num, Str, Table, check_kind, check_table
 from .model import BevelMounting
 
-__all__ = ["load_bevel_case", "bevel_case_from_data"]
+__all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data"]
 
 # the bevel kind in the one validation layer (ltca.validation); ranges are those the cradle model and the
 # seed-000 synthesis are known to handle (outside them the Newton solves of generation and TCA lose the flank)
@@ -67,14 +68,34 @@ _CASE = Table({"bevel": _BEVEL, "case": Table({"name": Str(non_empty=True, max_l
                "assembly": _ASSEMBLY, "material": _MATERIAL, "analysis": _ANALYSIS, "mounting": _MOUNTING})
 
 
-def load_bevel_case(case_path: str | Path) -> dict:
+@dataclass(frozen=True)
+class BevelCase:
+    """A validated spiral bevel case (mm, rad, MPa; torques in N m on the pinion, the sign picks the flank).
+
+    ``targets`` maps the pinion side ("concave": working, "convex": coast) to its synthesis target;
+    ``assembly`` holds the errors E, P, G (mm) and d_sigma (rad) as keyword arguments of
+    :class:`geometry.bevel.tca.Assembly`."""
+    name: str
+    basic: BevelBasicData
+    targets: dict
+    blank_offset: float | None
+    torques: tuple[float, ...]
+    assembly: dict
+    young: float
+    poisson: float
+    positions: int
+    fidelity: str
+    mounting: BevelMounting
+
+
+def load_bevel_case(case_path: str | Path) -> BevelCase:
     """Read and validate a bevel case; returns the basic data, the targets and the blank offset."""
     from ..case import read_toml
     path = Path(case_path)
     return bevel_case_from_data(read_toml(path), str(path), path.stem)
 
 
-def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") -> dict:
+def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") -> BevelCase:
     """:func:`load_bevel_case` of a case already read from TOML (``data`` without tables of other commands, e.g.
     ``[design]``); ``f`` names the file in messages, ``stem`` is the name when [case] gives none."""
     check_kind(data, "bevel", f)
@@ -104,7 +125,7 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
     asm = c.get("assembly") or {}
     mat = c.get("material") or {}
     an = c.get("analysis") or {}
-    return dict(name=name, basic=basic, targets=targets, blank_offset=b.get("blank_offset_mm"), torques=torques,
+    return BevelCase(name=name, basic=basic, targets=targets, blank_offset=b.get("blank_offset_mm"), torques=torques,
                 assembly=dict(E=float(asm.get("E_mm", 0.0)), P=float(asm.get("P_mm", 0.0)),
                               G=float(asm.get("G_mm", 0.0)), d_sigma=float(np.deg2rad(asm.get("sigma_deg", 0.0)))),
                 young=float(mat.get("youngs_modulus_mpa", 206000.0)), poisson=float(mat.get("poisson_ratio", 0.3)),

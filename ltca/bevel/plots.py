@@ -23,15 +23,15 @@ def _outline(pair) -> np.ndarray:
 def plot_all(d: Path, title: str, pair, ds, per: dict, patterns: dict, outlines: dict, paths: dict, runs: dict
              ) -> list[str]:
     """Write te.png, bearing_pattern.png and load_sharing.png; returns the file names."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib import colormaps
+    from matplotlib.figure import Figure
     files = []
     tq = [float(t) for t in ds.torque.values]
-    x = ds.position.values
-    cmap = plt.get_cmap("viridis")
+    x = ds.cycle.values
+    cmap = colormaps["viridis"]
     colours = {T: cmap(k / max(len(tq) - 1, 1)) for k, T in enumerate(tq)}
-    fig, ax = plt.subplots(figsize=(8, 4.2))
+    fig = Figure(figsize=(8, 4.2))
+    ax = fig.add_subplot()
     drawn = set()
     for T in tq:
         ax.plot(x, per[T]["te"], "-o", ms=3, color=colours[T], label=f"loaded, {T:g} N m")
@@ -40,19 +40,19 @@ def plot_all(d: Path, title: str, pair, ds, per: dict, patterns: dict, outlines:
             ax.plot(x, per[T]["te0"], "--", color="k" if T > 0 else "0.5", lw=1, label=f"unloaded ({flank})")
             drawn.add(flank)
     ax.set_xlabel("pinion angle [mesh cycles]")
-    ax.set_ylabel("transmission error [arcsec] (negative: gear lags)")
+    ax.set_ylabel("transmission error [arcsec] (positive: gear lags)")
     ax.set_title(f"{title}: loaded TE", fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()
     fig.savefig(d / "te.png", dpi=120)
-    plt.close(fig)
     files.append("te.png")
 
     box = _outline(pair)
     # colour scale: the largest interior peak (edge peaks are singular and mesh-dependent: they saturate)
     vmax = 1.1 * max(float(np.max(per[T]["pmax_interior"])) for T in tq)
-    fig, axes = plt.subplots(len(tq), 1, figsize=(8, 2.6 * len(tq) + 0.6), squeeze=False)
+    fig = Figure(figsize=(8, 2.6 * len(tq) + 0.6))
+    axes = fig.subplots(len(tq), 1, squeeze=False)
     for ax, T in zip(axes[:, 0], tq):
         Lb, Rb, P = patterns[T]
         im = ax.pcolormesh(Lb, Rb, np.where(P > 0, P, np.nan), cmap="inferno", vmin=0, vmax=vmax, shading="nearest")
@@ -72,10 +72,10 @@ def plot_all(d: Path, title: str, pair, ds, per: dict, patterns: dict, outlines:
     fig.colorbar(im, ax=axes[:, 0], label="contact pressure [MPa] (edge peaks saturate)", shrink=0.8, extend="max")
     fig.suptitle(f"{title}: bearing pattern on the gear flank, axial section", fontsize=10)
     fig.savefig(d / "bearing_pattern.png", dpi=120)
-    plt.close(fig)
     files.append("bearing_pattern.png")
 
-    fig, ax = plt.subplots(figsize=(8, 3.6))
+    fig = Figure(figsize=(8, 3.6))
+    ax = fig.add_subplot()
     for T in tq:
         s = per[T]["share"]
         xx = np.concatenate([x + j for j in LOADED])
@@ -89,6 +89,5 @@ def plot_all(d: Path, title: str, pair, ds, per: dict, patterns: dict, outlines:
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(d / "load_sharing.png", dpi=120)
-    plt.close(fig)
     files.append("load_sharing.png")
     return files

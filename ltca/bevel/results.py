@@ -17,11 +17,10 @@ from scipy.interpolate import griddata
 
 from geometry.bevel.tca import RAD_PER_ARCSEC, tca
 
-from ..outputs import write_json_atomic
 from .loaded import BevelPosition
 from .loaded_model import LOADED
 
-__all__ = ["edge_band", "position_arrays", "pattern_grid", "fit_ellipse", "write_outputs"]
+__all__ = ["edge_band", "position_arrays", "pattern_grid", "fit_ellipse", "bevel_dataset", "write_files"]
 
 _BINS = (121, 61)
 
@@ -60,8 +59,9 @@ def edge_band(module: float) -> float:
 
 def position_arrays(res: list[BevelPosition], torque_nm: float, band: float = 0.6) -> dict[str, np.ndarray]:
     """Per-position figures of one torque (arrays over positions; shares over positions x pairs)."""
-    te = np.array([r.te for r in res]) / RAD_PER_ARCSEC
-    te0 = np.array([r.te0 for r in res]) / RAD_PER_ARCSEC
+    # the project's sign: the gear's lag, positive (BevelPosition.te is the gear's rotation ahead of rigid)
+    te = -np.array([r.te for r in res]) / RAD_PER_ARCSEC
+    te0 = -np.array([r.te0 for r in res]) / RAD_PER_ARCSEC
     pmax = np.array([r.max_pressure for r in res])
     inner = np.array([r.pressure[r.edge_dist > band].max() if np.any(r.edge_dist > band) else 0.0 for r in res])
     edge_frac = np.array([r.force[r.edge != ""].sum() / max(r.force.sum(), 1e-300) for r in res])
@@ -114,9 +114,9 @@ def _ellipse_outline(r: BevelPosition, j: int) -> np.ndarray | None:
     return np.column_stack([np.ones(len(s)), pts]) @ coef
 
 
-def write_outputs(d: Path, case: dict, pair, asm, fid, runs: dict, torques, timings: dict) -> dict:
-    """results.nc, summary.json, VTU and plots of a bevel run; returns the summary."""
-    from .plots import plot_all
+def bevel_dataset(case, pair, asm, fid, runs: dict, torques, timings: dict) -> tuple[xr.Dataset, dict, dict]:
+    """The run dataset and summary of a bevel run in the one vocabulary (:mod:`ltca.results`), and what the plots
+    need (per-torque arrays, patterns, ellipse outlines, unloaded paths)."""
     per, patterns, outlines, paths = {}, {}, {}, {}
     for side, rr in runs.items():
         tc = tca(rr["lm"].pair, side, asm=asm, steps_per_cycle=16, max_cycles=3.0)
@@ -127,64 +127,89 @@ def write_outputs(d: Path, case: dict, pair, asm, fid, runs: dict, torques, timi
                 patterns[T] = pattern_grid(pair, rr[T])
                 every = max(len(rr[T]) // 6, 1)
                 outlines[T] = [e for r in rr[T][::every] for j in LOADED if (e := _ellipse_outline(r, j)) is not None]
-                _write_vtu(d / f"bearing_pattern_{T:g}Nm.vtu", rr[T])
     tq = list(torques)
     first = next(iter(runs.values()))
     phi = np.array([r.phi1 for r in first[next(k for k in first if k != "lm")]])
     c1 = 2 * np.pi / pair.blank.pinion.z
+    b = pair.blank.data.face_width
     Lb, Rb, _ = patterns[tq[0]]
+    for T in tq:
+        per[T]["stiffness_per_mm"] = per[T]["stiffness"] / b
     ds = xr.Dataset(
         {name: (("torque", "position"), np.stack([per[T][key] for T in tq]), {"units": u, "long_name": ln})
-         for name, key, u, ln in (("te_loaded", "te", "arcsec", "loaded transmission error (driven sense)"),
-                                  ("te_unloaded", "te0", "arcsec", "unloaded transmission error"),
-                                  ("max_pressure", "pmax", "MPa", "peak contact pressure (edges included)"),
-                                  ("max_pressure_interior", "pmax_interior", "MPa",
-                                   "peak pressure beyond 0.12 module from the flank edges"),
+         for name, key, u, ln in (("te_loaded", "te", "arcsec", "loaded transmission error (gear lag, positive)"),
+                                  ("te_unloaded", "te0", "arcsec", "unloaded transmission error (gear lag, positive)"),
+                                  ("max_pressure", "pmax", "MPa", "largest cell pressure, edge contact included"),
+                                  ("max_flank_pressure", "pmax_interior", "MPa",
+                                   "largest flank pressure, beyond 0.12 module from the flank edges"),
                                   ("edge_fraction", "edge_fraction", "1", "normal force at edges / total"),
-                                  ("root_stress_pinion", "root1", "MPa", "largest principal fillet stress, pinion"),
-                                  ("root_stress_gear", "root2", "MPa", "largest principal fillet stress, gear"),
-                                  ("mesh_stiffness", "stiffness", "N/um", "secant mesh stiffness (normal)"),
-                                  ("torque_residual", "residual", "1", "|sum F v2 - T2| / T2"))},
+                                  ("root_stress_pinion", "root1", "MPa", "max principal fillet stress, pinion"),
+                                  ("root_stress_gear", "root2", "MPa", "max principal fillet stress, gear"),
+                                  ("mesh_stiffness", "stiffness_per_mm", "N/(mm um)",
+                                   "secant mesh stiffness (normal) per face width"),
+                                  ("mesh_stiffness_total", "stiffness", "N/um", "secant mesh stiffness (normal)"),
+                                  ("torque_residual", "residual", "1", "relative torque balance residual"))},
         coords={"torque": ("torque", np.array(tq), {"units": "N m", "long_name": "pinion torque (sign: flank)"}),
-                "position": ("position", phi / c1, {"units": "1", "long_name": "pinion angle / mesh cycle"}),
-                "pair": ("pair", np.array(LOADED), {"long_name": "tooth pair (pinion tooth +j)"}),
+                "position": ("position", np.degrees(phi), {"units": "deg",
+                                                           "long_name": "pinion angle from the mean point"}),
+                "cycle": ("position", phi / c1, {"units": "1", "long_name": "position in mesh cycles from the "
+                                                                           "mean point"}),
+                "pair": ("pair", np.array(LOADED), {"units": "1", "long_name": "tooth pair (pinion tooth +j)"}),
                 "L": ("L", Lb, {"units": "mm", "long_name": "gear cone distance"}),
                 "Rn": ("Rn", Rb, {"units": "mm", "long_name": "gear height over the pitch cone"})})
     ds["share"] = (("torque", "position", "pair"), np.stack([per[T]["share"] for T in tq]),
                    {"units": "1", "long_name": "share of the gear torque per tooth pair"})
     ds["pattern"] = (("torque", "Rn", "L"), np.stack([patterns[T][2] for T in tq]),
                      {"units": "MPa", "long_name": "largest pressure over the cycle on the gear flank"})
-    ds.attrs.update(case=case["name"], fidelity=fid.name, assembly=str(asm))
-    tmp = d / "results.nc.tmp"
-    ds.to_netcdf(tmp)
-    tmp.replace(d / "results.nc")
-    plots = plot_all(d, case["name"], pair, ds, per, patterns, outlines, paths, runs)
-    summary = dict(case=case["name"], fidelity=fid.name,
+    ds.attrs.update(case=case.name, fidelity=fid.name, assembly=str(asm),
+                    conventions="TE positive = gear lags; position: pinion angle from the mean point")
+    records = [_torque_summary(per[T], runs, T) for T in tq]
+    summary = dict(case=case.name, kind="bevel", fidelity=fid.name, positions=len(phi), **records[0],
                    assembly=dict(E_mm=asm.E, P_mm=asm.P, G_mm=asm.G, sigma_deg=float(np.rad2deg(asm.d_sigma))),
-                   torques={f"{T:g}": _torque_summary(per[T], runs, T) for T in tq}, timings_s=timings, plots=plots,
-                   notes=dict(peak_pressure_mpa="with the cells at a flank edge: singular at a sharp edge and "
-                                                "mesh-dependent (grows as the cells shrink); "
-                                                "peak_pressure_interior_mpa leaves out a band of 0.12 module along "
-                                                "the edges and converges (ltca convergence gives the ladder)",
+                   torques=records, timings_s=timings,
+                   notes=dict(max_contact_pressure_mpa="with the cells at a flank edge: singular at a sharp edge and "
+                                                       "mesh-dependent (grows as the cells shrink); "
+                                                       "max_flank_pressure_mpa leaves out a band of 0.12 module "
+                                                       "along the edges and converges (ltca convergence gives the "
+                                                       "ladder)",
                               mesh_stiffness="secant: total normal force over the elastic approach at the "
                                              "torque-weighted gear lever, mean over the cycle",
-                              te="driven sense, arcsec; negative: the gear lags"))
-    write_json_atomic(d / "summary.json", summary)
-    return summary
+                              te="arcsec of the gear; positive: the gear lags"))
+    summary["converged"] = all(r["converged"] for r in records)
+    summary["max_torque_residual"] = max(r["max_torque_residual"] for r in records)
+    return ds, summary, dict(per=per, patterns=patterns, outlines=outlines, paths=paths)
+
+
+def write_files(d: Path, case, pair, ds: xr.Dataset, plotdata: dict, runs: dict, torques) -> list[str]:
+    """results.nc, the bearing-pattern VTU per torque and the plots of a bevel run, into the folder ``d``."""
+    from ..outputs import write_bytes_atomic
+    from .plots import plot_all
+    for side, rr in runs.items():
+        for T in torques:
+            if T in rr:
+                _write_vtu(d / f"bearing_pattern_{T:g}Nm.vtu", rr[T])
+    write_bytes_atomic(d / "results.nc", ds.to_netcdf(engine="h5netcdf"))
+    return plot_all(d, case.name, pair, ds, plotdata["per"], plotdata["patterns"], plotdata["outlines"],
+                    plotdata["paths"], runs)
 
 
 def _torque_summary(a: dict, runs: dict, T: float) -> dict:
     side = "concave" if T > 0 else "convex"
     res = runs[side][T]
     edges = sorted({e for r in res for e, f in r.edge_load().items() if f > 0.01 * r.force.sum()})
-    return dict(flank="working" if T > 0 else "coast", te_pp_loaded_arcsec=float(np.ptp(a["te"])),
-                te_pp_unloaded_arcsec=float(np.ptp(a["te0"])), te_mean_loaded_arcsec=float(np.mean(a["te"])),
-                peak_pressure_mpa=float(a["pmax"].max()), peak_pressure_interior_mpa=float(a["pmax_interior"].max()),
-                edge_contact=bool(edges), edge_locations=edges, edge_force_fraction_max=float(a["edge_fraction"].max()),
-                max_pair_share=float(a["share"].max()), root_stress_pinion_mpa=float(np.nanmax(a["root1"])),
-                root_stress_gear_mpa=float(np.nanmax(a["root2"])),
+    residual = float(a["residual"].max())
+    return dict(torque_nm=float(T), flank="working" if T > 0 else "coast",
+                te_loaded_ptp_arcsec=float(np.ptp(a["te"])), te_unloaded_ptp_arcsec=float(np.ptp(a["te0"])),
+                te_loaded_mean_arcsec=float(np.mean(a["te"])),
+                max_flank_pressure_mpa=float(a["pmax_interior"].max()),
+                max_contact_pressure_mpa=float(a["pmax"].max()),
+                edge_locations=edges, edge_force_fraction_max=float(a["edge_fraction"].max()),
+                max_pair_share=float(a["share"].max()),
+                max_root_stress_mpa=dict(pinion=float(np.nanmax(a["root1"])), gear=float(np.nanmax(a["root2"]))),
                 mesh_stiffness_mean_n_per_um=float(np.nanmean(a["stiffness"])),
-                torque_residual_max=float(a["residual"].max()),
+                mesh_stiffness_mean_n_per_mm_um=float(np.nanmean(a["stiffness_per_mm"])),
+                converged=bool(residual < 1e-6 and all(r.residual < 1e-6 for r in res)),
+                max_torque_residual=residual,
                 pinion_torque_balance=[float(a["pinion_balance"].min()), float(a["pinion_balance"].max())])
 
 

@@ -22,7 +22,7 @@ from geometry.bevel.tca import ContactError
 from ..validation import DesignError
 from .case import load_bevel_case
 
-__all__ = ["run_bevel_tca", "plot_bevel", "bevel_benchmark"]
+__all__ = ["run_bevel_tca", "plot_bevel", "bevel_benchmark", "print_run"]
 
 
 def _settings(cut: MemberCut) -> dict:
@@ -82,9 +82,9 @@ def run_bevel_tca(case_path: str, out: str | None = None) -> dict:
 
 
 def _run_bevel_tca(case: dict, out: str | None) -> dict:
-    bl = design_blank(case["basic"])
+    bl = design_blank(case.basic)
     gear = standard_gear_cut(bl)
-    pin, infos = synthesize_pinion(bl, gear, case["targets"], blank_offset=case["blank_offset"])
+    pin, infos = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
     pair = BevelPair(bl, gear, pin)
     flanks, design, runs = {}, {}, {}
     for label, side in (("working", "concave"), ("coast", "convex")):
@@ -92,7 +92,7 @@ def _run_bevel_tca(case: dict, out: str | None) -> dict:
         sep = separation_tca(pair, side, steps_per_cycle=16, cycles=3.0)
         runs[label] = (r, sep)
         m = cycle_metrics(r, bl)
-        tg = case["targets"][side]
+        tg = case.targets[side]
         m["targets"] = dict(path_angle_deg=float(np.rad2deg(tg.eta2)), te_magnitude_arcsec=tg.te_magnitude / RAD_PER_ARCSEC,
                             ellipse_major_mm=tg.major_axis)
         m["separation_te_range_arcsec"] = float(np.ptp(sep.te_arcsec))
@@ -105,12 +105,12 @@ def _run_bevel_tca(case: dict, out: str | None) -> dict:
     settings = dict(gear=_settings(gear), pinion=_settings(pin))
     undercut = {m: {s: undercut_check(c.flank(s), bl, m).message for s in ("concave", "convex")}
                 for m, c in (("gear", gear), ("pinion", pin))}
-    summary = dict(case=case["name"], flanks=flanks, machine_settings=settings, design=design, undercut=undercut)
-    _print_summary(case["name"], settings, flanks)
+    summary = dict(case=case.name, flanks=flanks, machine_settings=settings, design=design, undercut=undercut)
+    _print_summary(case.name, settings, flanks)
     if out is not None:
         d = Path(out)
         d.mkdir(parents=True, exist_ok=True)
-        summary["plots"] = plot_bevel(pair, runs, d, case["name"])
+        summary["plots"] = plot_bevel(pair, runs, d, case.name)
         from ..outputs import write_json_atomic
         write_json_atomic(d / "summary.json", summary)
     return summary
@@ -135,9 +135,7 @@ def plot_bevel(pair: BevelPair, runs: dict, out: Path, title: str) -> list[str]:
 
     ``runs``: {"working"|"coast": (TCAResult, SeparationResult)}.  Returns the file names written.
     """
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .. import figures as plt
     bl = pair.blank
     A0, Ai = bl.outer_cone_distance, bl.inner_cone_distance
     Lb = np.array([Ai, A0])
@@ -225,13 +223,13 @@ def bevel_benchmark(repeat: int = 3, case_path: str | None = None) -> dict:
         raise ValueError(f"repeat = {repeat!r} is outside the allowed range [1, inf)")
     path = case_path or str(Path(__file__).resolve().parents[2] / "cases" / "spiral_bevel_cao2008.toml")
     case = load_bevel_case(path)
-    bl = design_blank(case["basic"])
+    bl = design_blank(case.basic)
     gear = standard_gear_cut(bl)
     times: dict[str, list] = {k: [] for k in ("generation", "tca", "separation", "synthesis")}
     pin = None
     for _ in range(repeat):
         t0 = time.perf_counter()
-        pin, _ = synthesize_pinion(bl, gear, case["targets"], blank_offset=case["blank_offset"])
+        pin, _ = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
         times["synthesis"].append(time.perf_counter() - t0)
     pair = BevelPair(bl, gear, pin)
     clearance = bl.pinion.dedendum - bl.gear.addendum
@@ -250,3 +248,22 @@ def bevel_benchmark(repeat: int = 3, case_path: str | None = None) -> dict:
     med = {k: float(np.median(v)) for k, v in times.items()}
     print(f"spiral bevel benchmark (median of {repeat}): " + ", ".join(f"{k} {v:.2f} s" for k, v in med.items()))
     return med
+
+
+def print_run(result, head: dict) -> None:
+    """The console table of ``ltca run`` of a bevel case."""
+    p = result._state.plan
+    asm = p.asm
+    print(f"Spiral bevel LTCA: {result.case.name} ({p.fid.name}, {p.positions} positions per cycle, assembly "
+          f"E {asm.E:g} P {asm.P:g} G {asm.G:g} mm)")
+    print(f"{'torque N m':>10s} {'flank':8s} {'TE p-p loaded':>13s} {'unloaded':>9s} {'p flank MPa':>11s} "
+          f"{'p max MPa':>10s} {'max share':>9s} {'root MPa':>9s} {'k N/um':>7s}  edges")
+    for t in head["torques"]:
+        print(f"{t['torque_nm']:10g} {t['flank']:8s} {t['te_loaded_ptp_arcsec']:13.2f} "
+              f"{t['te_unloaded_ptp_arcsec']:9.2f} {t['max_flank_pressure_mpa']:11.0f} "
+              f"{t['max_contact_pressure_mpa']:10.0f} {t['max_pair_share']:9.3f} "
+              f"{t['max_root_stress_mpa']['pinion']:9.0f} {t['mesh_stiffness_mean_n_per_um']:7.0f}  "
+              f"{', '.join(t['edge_locations']) or '-'}")
+    print("TE in arcsec (positive: the gear lags); p flank: peak pressure away from the flank edges (its "
+          "convergence: ltca convergence); p max: with the edge cells (singular at a sharp edge, grows as the "
+          "cells shrink)")

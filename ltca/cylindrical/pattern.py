@@ -17,15 +17,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+import xarray as xr
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
+from .. import figures as plt
+from .derived import roll_to_diameter
+from .report import plot_data
 
-from .derived import roll_to_diameter  # noqa: E402
-from .report import plot_data  # noqa: E402
+from .. import figures as plt
 
 __all__ = ["STRIPING_LIMIT", "column_profile", "striping_index", "plot_pattern_diameter"]
 

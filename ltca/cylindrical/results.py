@@ -121,6 +121,8 @@ def position_dataset(lm: LoadedModel, results: list[PositionResult], torque: flo
                          {"units": "MPa", "long_name": "contact pressure on the pinion flank at each position"}),
         },
         coords={"position": ("position", roll, {"units": "deg", "long_name": "pinion roll from the pitch point"}),
+                "cycle": ("position", np.radians(roll) / lm.model.pitch_angle,
+                          {"units": "1", "long_name": "position in mesh cycles from the pitch point"}),
                 "roll": ("position", roll, {"units": "deg", "long_name": "pinion roll from the pitch point "
                                             "(the position coordinate)"}),
                 "pinion_tooth": ("pinion_tooth", teeth1, {"units": "1", "long_name": "pinion tooth index"}),
@@ -151,6 +153,7 @@ def summary(lm: LoadedModel, ds: xr.Dataset, timings: dict, converged: bool, edg
         "max_root_stress_mpa": {"pinion": f(np.nanmax(ds.root_stress_pinion.values)),
                                 "gear": f(np.nanmax(ds.root_stress_gear.values))},
         "mesh_stiffness_mean_n_per_mm_um": f(ds.mesh_stiffness.mean()),
+        "mesh_stiffness_mean_n_per_um": f(ds.mesh_stiffness.mean() * lm.model.face_width),
         "max_pairs_in_contact": int((ds.pair_load > 1e-6 * float(ds.pair_load.sum("pinion_tooth").max())).sum(
             "pinion_tooth").max()),
         "converged": bool(converged),

@@ -72,7 +72,7 @@ class BevelBackend:
         base = copy.deepcopy({k: v for k, v in data.items() if k != "design"})
         self.case = bevel_case_from_data(base, file, Path(file).stem if file else "bevel")
         case = self.case
-        self.torques_nm = tuple(case["torques"])
+        self.torques_nm = tuple(case.torques)
         self.sides = sorted({"concave" if t > 0 else "convex" for t in self.torques_nm})
         for v in spec.variables:
             flank = v.name.split("_")[0]
@@ -80,16 +80,16 @@ class BevelBackend:
                 raise CaseError(f"design.variables.{v.name}", f"[{v.lower:g}, {v.upper:g}]", f"a variable of a "
                                 f"loaded flank: no torque of [load] torque_nm loads the {flank} flank (a "
                                 f"{'positive' if flank == 'working' else 'negative'} pinion torque)", file)
-        self.blank = design_blank(case["basic"])
+        self.blank = design_blank(case.basic)
         req = spec.constraints.edge_margin_mm
         if req is not None and req >= 0.25 * self.blank.face_width:
             raise CaseError("design.constraints.edge_margin_mm", req, f"a margin below a quarter of the face width "
                             f"({0.25 * self.blank.face_width:.2f} mm): a pattern also needs a length", file)
-        self.positions = spec.positions or case["positions"]
-        self.fidelity = spec.fidelity or case["fidelity"]
+        self.positions = spec.positions or case.positions
+        self.fidelity = spec.fidelity or case.fidelity
         self.fid = BevelFidelity.named(self.fidelity)
-        self.asm = Assembly(**case["assembly"])
-        self.phi = cycle_positions(self.positions, case["basic"].z1)
+        self.asm = Assembly(**case.assembly)
+        self.phi = cycle_positions(self.positions, case.basic.z1)
         self.prepare_seconds = 0.0
         self.gear = None
         self.bodies: dict = {}
@@ -115,7 +115,7 @@ class BevelBackend:
         """Pinion side -> flank targets of a design (the case's, with the design variables set)."""
         out = {}
         for flank, side in SIDES.items():
-            tg = self.case["targets"][side]
+            tg = self.case.targets[side]
             for key, field in _FIELDS.items():
                 x = values.get(f"{flank}_{key}")
                 if x is not None:
@@ -128,7 +128,7 @@ class BevelBackend:
         key = (side, tg)
         if key not in self._cuts:
             fc, info = control_point_design(self.blank, self.gear, side, tg)
-            off = self.case["blank_offset"]
+            off = self.case.blank_offset
             if off is not None:
                 fc, info = control_point_design(self.blank, self.gear, side, tg, off, (info["C"], info["D"]), fc)
             if len(self._cuts) > 64:
@@ -198,8 +198,8 @@ class BevelBackend:
             raise CaseError("design.variables", self.start(), f"a start design the geometry can make ({exc})",
                             self.file) from None
         for side in self.sides:
-            self.bodies[side] = prepare_bodies(pair, side, self.fid, self.case["young"], self.case["poisson"],
-                                               None, self.progress, mounting=self.case["mounting"])
+            self.bodies[side] = prepare_bodies(pair, side, self.fid, self.case.young, self.case.poisson,
+                                               None, self.progress, mounting=self.case.mounting)
         self.prepare_seconds = time.perf_counter() - t0
 
     def _cycle(self, pair: BevelPair, torque_nm: float, asm: Assembly | None = None):
@@ -295,4 +295,4 @@ class BevelBackend:
         import io
         with contextlib.redirect_stdout(io.StringIO()):
             s = run_bevel_ltca(str(case_path), str(out), self.positions, self.fidelity, progress=False)
-        return {k: v["te_pp_loaded_arcsec"] for k, v in s["torques"].items()}
+        return {f"{v['torque_nm']:g}": v["te_loaded_ptp_arcsec"] for v in s["torques"]}

@@ -15,9 +15,7 @@ __all__ = ["plot_harris", "plot_map", "plot_history"]
 
 
 def _plt():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .. import figures as plt
     return plt
 
 

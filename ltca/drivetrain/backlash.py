@@ -103,9 +103,7 @@ def unloaded_from_loaded(roll_angle, loaded_drive, loaded_coast,
 
 def plot_backlash(curves: BacklashCurves, path: str, title: str = "") -> None:
     """Unloaded and loaded TE of both flanks and the backlash curve, in arcsec (PNG, Agg)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .. import figures as plt
     deg = np.degrees(curves.roll_angle)
     fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(6.4, 5.6))
     ax1.plot(deg, curves.te_drive / RAD_PER_ARCSEC, "C0-", label="drive, unloaded")

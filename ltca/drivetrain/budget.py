@@ -29,9 +29,7 @@ def write_budget_csv(result: BudgetResult, path: str) -> None:
 
 def plot_budget(result: BudgetResult, path: str) -> None:
     """Stacked bars of member deflections and the B0 line against torque (PNG, Agg backend)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .. import figures as plt
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     width = 0.6 * (np.min(np.diff(result.torque)) if result.torque.size > 1 else 1.0)
     bottom = np.zeros_like(result.torque)

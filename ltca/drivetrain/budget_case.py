@@ -15,7 +15,7 @@ from ltca.drivetrain.budget_model import (DEG, BallSplineMember, DriveTrain, Mes
 from ltca.errors import CaseError
 from ltca.validation import Int, List, Num, Str, check_kind
 
-__all__ = ["load_budget_case", "load_backlash_table"]
+__all__ = ["load_budget_case", "budget_from_data", "load_backlash_table"]
 
 
 #: physically meaningful ranges of every number of the budget and chain kinds (ltca.validation.Num)
@@ -123,7 +123,11 @@ def load_budget_case(path: str) -> tuple[DriveTrain, np.ndarray]:
         On a missing, mistyped, out-of-range or unknown field.
     """
     from ..case import read_toml
-    doc = read_toml(path)
+    return budget_from_data(read_toml(path), path)
+
+
+def budget_from_data(doc: dict, path: str | None = None) -> tuple[DriveTrain, np.ndarray]:
+    """:func:`load_budget_case` of a case already read from TOML; ``path`` names the file in messages."""
     check_kind(doc, "budget", path)
     try:
         _known(doc, {"budget", "member", "backlash"}, "case")

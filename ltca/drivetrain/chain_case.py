@@ -13,7 +13,7 @@ from ltca.drivetrain.chain_model import DEG, LINKS, Chain, ChainElement, evaluat
 from ltca.errors import CaseError
 from ltca.validation import check_kind
 
-__all__ = ["load_chain_case"]
+__all__ = ["load_chain_case", "chain_from_data"]
 
 
 _ELEMENT_KEYS = {"name", "teeth", "pitch_diameter_mm", "link", "fi_um", "Fpr_um", "F_um", "zk",
@@ -91,7 +91,11 @@ def load_chain_case(path: str) -> tuple[Chain, ...]:
         Naming the field on any bad, unknown or missing value, or a chain that does not close.
     """
     from ..case import read_toml
-    doc = read_toml(path)
+    return chain_from_data(read_toml(path), path)
+
+
+def chain_from_data(doc: dict, path: str | None = None) -> tuple[Chain, ...]:
+    """:func:`load_chain_case` of a case already read from TOML; ``path`` names the file in messages."""
     check_kind(doc, "chain", path)
     try:
         _known(doc, {"machine", "workpiece", "chain"}, "case")

@@ -40,9 +40,7 @@ def print_table(rows: list[dict], keys: list[str] | None = None) -> str:
 
 
 def _plt():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .. import figures as plt
     return plt
 
 

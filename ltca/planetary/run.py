@@ -9,12 +9,15 @@ from __future__ import annotations
 
 import json
 import time
+from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from geometry.satellite import compare_forming, plot_forming, rated_torque, unloaded_gaps
 
 from ..case import FIDELITIES
+from ..errors import CaseError
 from ..cylindrical.loaded_model import Fidelity
 from ..cylindrical.tca import ARCSEC_PER_RAD
 from .case import load_planetary_case
@@ -22,7 +25,8 @@ from .loaded import positions, prepare_satellite, solve_cycle
 from .model import build_satellite_model
 from .report import out_dir, plot_gaps, plot_load_sharing, print_table, write_csv
 
-__all__ = ["SHARE_MIN", "run_forming", "run_planetary_tca", "run_planetary", "summarise"]
+__all__ = ["SHARE_MIN", "run_forming", "run_planetary_tca", "run_planetary", "summarise", "plan", "execute",
+           "print_run", "write_files", "PlanetaryPlan", "PlanetaryRun"]
 
 SHARE_MIN = 1e-3
 
@@ -111,33 +115,71 @@ def summarise(results: list, direction: int, torque: float, rb1: float) -> dict:
                                    forces_n={k: float(v) for k, v in rc["pair_load"].items()}) for rc in recs])
 
 
-def run_planetary(case_path, out="out", fidelity=None, n_positions=None, progress=True, cache=None,
-                  torques_nm=None) -> dict:
-    """Loaded contact of the satellite in the wheel at every torque of the case, both directions.
-    ``torques_nm`` (``--torque``) replace the case's torques."""
-    say = print if progress else (lambda *a, **k: None)
-    t_start = time.perf_counter()
-    case = load_planetary_case(case_path)
-    if torques_nm is not None:
-        import dataclasses
+@dataclass(frozen=True)
+class PlanetaryPlan:
+    """A validated planetary run: the case (torques N mm on the satellite), positions, fidelity."""
+    case: object
+    positions: int
+    fidelity_name: str
+    warnings: tuple[str, ...] = ()
 
-        from ..case import check_torques
+    @property
+    def torques_nm(self) -> tuple[float, ...]:
+        return tuple(t * 1e-3 for t in self.case.torques) if self.case.torques else ()
+
+
+@dataclass
+class PlanetaryRun:
+    """What :func:`execute` found: the model, the loaded model, the rated torque, the rows per torque and
+    direction, the drive-direction results per torque, timings."""
+    plan: PlanetaryPlan
+    sm: object
+    lm: object
+    rating: object
+    torques: tuple[float, ...]
+    phis: np.ndarray
+    rows: list
+    plot: list
+    results: list
+    timings: dict
+
+
+def plan(case, fidelity=None, positions=None, torques_nm=None, max_output_gb: float = 2.0, file=None):
+    """Validate a planetary run's settings (no FE work)."""
+    import dataclasses
+
+    from ..case import check_torques
+    if torques_nm is not None:
         case = dataclasses.replace(case, torques=tuple(1e3 * t for t in check_torques(list(torques_nm), "--torque")),
                                    torque_fractions=())
+    fid_name = fidelity or case.fidelity
+    if fid_name not in FIDELITIES:
+        raise CaseError("--fidelity", fid_name, f"one of {sorted(FIDELITIES)}", file)
+    n = positions or case.positions
+    if not 1 <= n <= 500:
+        raise CaseError("--positions", n, "an integer in [1, 500] (as analysis.positions)", file)
+    return PlanetaryPlan(case, n, fid_name)
+
+
+def execute(p: PlanetaryPlan, progress=None, cache=None, store=None) -> PlanetaryRun:
+    """The loaded contact of the satellite in the wheel at every torque, both directions."""
+    say = progress or (lambda *a, **k: None)
+    t_start = time.perf_counter()
+    case = p.case
     sm = build_satellite_model(case)
     rating = rated_torque(sm.satellite, case.rating)
     torques = case.torques or tuple(f * rating.torque_Nm * 1e3 for f in case.torque_fractions)
-    fid_name = fidelity or case.fidelity
-    fid = Fidelity.from_preset(FIDELITIES[fid_name], case.design.m, slices=4)
-    phis = positions(sm, n_positions or case.positions)
+    fid = Fidelity.from_preset(FIDELITIES[p.fidelity_name], case.design.m, slices=4)
+    phis = positions(sm, p.positions)
     t0 = time.perf_counter()
     lm = prepare_satellite(sm, fid, phis, max(torques), case.far_teeth, cache, say)
     t_prep = time.perf_counter() - t0
     rb1 = sm.pair.pinion.r_base
-    rows, plot, t_contact = [], [], 0.0
+    rows, plot, results, t_contact = [], [], [], 0.0
     for T in torques:
         t0 = time.perf_counter()
         res = solve_cycle(lm, sm, phis, T)
+        results.append(res)
         t_contact += time.perf_counter() - t0
         label = f"{100 * T / (rating.torque_Nm * 1e3):.0f} % ({T / 1e3:.0f} N m)"
         entry = {"label": label, "pairs": {}, "mean_share": {}, "max_share": {}}
@@ -150,30 +192,43 @@ def run_planetary(case_path, out="out", fidelity=None, n_positions=None, progres
             entry["mean_share"][d] = [s["mean_share"][k] for k in ks]
             entry["max_share"][d] = [s["max_share"][k] for k in ks]
         plot.append(entry)
-    keys = ["direction", "percent_of_rated", "torque_nm", "pairs_min", "pairs_max", "loaded_pairs", "mean_share",
-            "te_um_mean", "te_arcsec_mean", "peak_pressure_mpa", "root_stress_satellite_mpa", "root_stress_wheel_mpa",
-            "torque_residual"]
     say(f"rated torque (ISO 6336-3, S_F {case.rating.S_Fmin}, b {case.face_width} mm): {rating.torque_Nm:.1f} N m; "
         f"teeth modelled: satellite {list(lm.teeth1)}, wheel {list(lm.teeth2)}; {len(phis)} positions")
-    if progress:
-        print_table([{k: (({p: round(v, 3) for p, v in r[k].items() if v >= SHARE_MIN}) if k == "mean_share" else r[k])
-                      for k in keys} for r in rows], keys)
     timings = dict(prepare=t_prep, contact=t_contact, total=time.perf_counter() - t_start, **lm.timings)
-    summary = dict(case=case.name, method=case.method, rated_torque_nm=rating.torque_Nm, fidelity=fid_name,
-                   positions=len(phis), teeth_satellite=list(lm.teeth1), teeth_wheel=list(lm.teeth2),
-                   max_pairs_loaded=max(r["pairs_max"] for r in rows),
-                   max_torque_residual=max(r["torque_residual"] for r in rows), converged=True,
-                   results=[{k: v for k, v in r.items()} for r in rows], timings_s=timings,
-                   reverse_direction="mirror image of the drive direction (symmetric teeth, axisymmetric supports)")
-    d = out_dir(out)
-    if d is not None:
-        (d / "summary.json").write_text(json.dumps(summary, indent=1, default=str))
-        write_csv(d / "load_sharing.csv", [dict(direction=r["direction"], percent_of_rated=r["percent_of_rated"],
-                                                torque_nm=r["torque_nm"], phi_deg=p["phi_deg"], pair=k, force_n=f,
-                                                share=f / sum(p["forces_n"].values()))
-                                           for r in rows for p in r["per_position"] for k, f in p["forces_n"].items()])
-        write_csv(d / "torques.csv", [{k: (json.dumps(r[k]) if isinstance(r[k], (dict, list)) else r[k]) for k in keys}
-                                      for r in rows])
-        plot_load_sharing(d / "load_sharing.png", plot)
-    say(f"timings: prepare {t_prep:.1f} s, contact {t_contact:.1f} s, total {timings['total']:.1f} s")
-    return summary
+    return PlanetaryRun(p, sm, lm, rating, tuple(torques), phis, rows, plot, results, timings)
+
+
+ROW_KEYS = ["direction", "percent_of_rated", "torque_nm", "pairs_min", "pairs_max", "loaded_pairs", "mean_share",
+            "te_um_mean", "te_arcsec_mean", "peak_pressure_mpa", "root_stress_satellite_mpa",
+            "root_stress_wheel_mpa", "torque_residual"]
+
+
+def print_run(result, head: dict) -> None:
+    """The console table of ``ltca run`` of a planetary case (both directions per torque)."""
+    print_table([{k: (({p: round(v, 3) for p, v in r[k].items() if v >= SHARE_MIN}) if k == "mean_share" else r[k])
+                  for k in ROW_KEYS} for r in head["results"]], ROW_KEYS)
+    t = head["timings_s"]
+    print(f"timings: prepare {t['prepare']:.1f} s, contact {t['contact']:.1f} s, total {t['total']:.1f} s")
+
+
+def write_files(run: PlanetaryRun, d: Path, ds) -> None:
+    """results.nc, load_sharing.csv, torques.csv and load_sharing.png of a planetary run into the folder ``d``."""
+    from ..outputs import write_bytes_atomic
+    rows = run.rows
+    write_bytes_atomic(d / "results.nc", ds.to_netcdf(engine="h5netcdf"))
+    write_csv(d / "load_sharing.csv", [dict(direction=r["direction"], percent_of_rated=r["percent_of_rated"],
+                                            torque_nm=r["torque_nm"], phi_deg=p["phi_deg"], pair=k, force_n=f,
+                                            share=f / sum(p["forces_n"].values()))
+                                       for r in rows for p in r["per_position"] for k, f in p["forces_n"].items()])
+    write_csv(d / "torques.csv", [{k: (json.dumps(r[k]) if isinstance(r[k], (dict, list)) else r[k])
+                                   for k in ROW_KEYS} for r in rows])
+    plot_load_sharing(d / "load_sharing.png", run.plot)
+
+
+def run_planetary(case_path, out="out", fidelity=None, n_positions=None, progress=True, cache=None,
+                  torques_nm=None) -> dict:
+    """``ltca run`` of a planetary case file into the run folder ``out`` (:func:`ltca.driver.run_to_dir`); returns
+    the summary as written (``out=None``: nothing written)."""
+    from ..driver import run_to_dir
+    return run_to_dir(case_path, out or "out", fidelity=fidelity, positions=n_positions, progress=progress,
+                      cache=cache, torques=torques_nm, write=out is not None)

@@ -22,7 +22,7 @@ import numpy as np
 import xarray as xr
 
 from ..case import parse_case
-from ..results import write_json
+from ..outputs import write_json
 from .montecarlo import check_draws, member_tolerances
 from .spec import Study
 from .store import SCALARS
@@ -165,9 +165,7 @@ def write_outputs(ds: xr.Dataset, out: Path, study: Study, plots: bool = True) -
                                             "deviations": check_draws(drawn, tols), "results": mc_statistics(ds)})
     if not plots:
         return
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .. import figures as plt
     keys = json.loads(ds.attrs.get("varied_keys", "[]"))
     if ds.sizes["torque"] > 1:
         _harris(ds, keys, out / "harris_map.png", plt)

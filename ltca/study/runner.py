@@ -23,7 +23,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import ConvergenceError
-from ..results import write_json
+from ..outputs import write_json
 from .spec import Study, Variant
 from .store import StudyStore
 from .tasks import compute_compliance, plan_variant, solve_point

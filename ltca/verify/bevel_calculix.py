@@ -42,21 +42,21 @@ def bevel_model(case_path: str, fidelity: str = "default", cache=None, say=None)
     case = load_bevel_case(case_path)
     t0 = time.perf_counter()
     pair = build_pair(case)
-    bodies = prepare_bodies(pair, "concave", BevelFidelity.named(fidelity), case["young"], case["poisson"], cache, say,
-                            mounting=case["mounting"])
-    return case, loaded_model(pair, bodies, Assembly(**case["assembly"])), time.perf_counter() - t0
+    bodies = prepare_bodies(pair, "concave", BevelFidelity.named(fidelity), case.young, case.poisson, cache, say,
+                            mounting=case.mounting)
+    return case, loaded_model(pair, bodies, Assembly(**case.assembly)), time.perf_counter() - t0
 
 
 def mounted(st: BevelCcxSettings, case: dict, lm) -> BevelCcxSettings:
     """CalculiX settings ``st`` with the case's mounting (pinion shaft seat, gear back face), which both models
     read."""
-    sup = case["mounting"].supports(lm.pair.blank)
+    sup = case.mounting.supports(lm.pair.blank)
     return replace(st, r_bore1=sup["pinion"][1], back_face_z=sup["gear"][1])
 
 
 def middle_torque(case: dict) -> float:
     """The middle of the case's positive torques, N m."""
-    tq = sorted(t for t in case["torques"] if t > 0)
+    tq = sorted(t for t in case.torques if t > 0)
     return float(tq[len(tq) // 2])
 
 
@@ -122,7 +122,7 @@ def run_bevel_validation(case_path: str, fractions=(0.0, 0.4), out: str = "out/v
     rich = {k: richardson([getattr(c, a) for c in ladder], 1.5) for k, a in
             (("theta", "theta_arcsec"), ("p_interior", "p_interior"))} if len(ladder) >= 3 else {}
     sh = lambda d: "/".join(f"{d[k]:.3f}" for k in sorted(d))        # noqa: E731
-    lines = [f"{case['name']}: working flank at {torque:g} N m (pinion), ours (default fidelity) against CalculiX "
+    lines = [f"{case.name}: working flank at {torque:g} N m (pinion), ours (default fidelity) against CalculiX "
              "(whole members, gmsh OCC solids, C3D10, penalty contact; pinion bore on a rigid body, gear back face "
              "fixed)",
              f"{'phi1/cycle':>10} {'TE ours':>8} {'TE ccx':>8} {'dTE%':>6} {'share ours':>13} {'share ccx':>13} "

@@ -78,12 +78,12 @@ def run_bevel_validate(case_path: str, out: str, progress: bool = True) -> int:
     pair = build_pair(case)
     d = Path(out)
     d.mkdir(parents=True, exist_ok=True)
-    report: dict = {"case": case["name"]}
+    report: dict = {"case": case.name}
     for near in (True, False):
         fid = BevelFidelity() if near else BevelFidelity(name="default-no-near-field", near_field=False)
         t0 = time.perf_counter()
-        bodies = prepare_bodies(pair, "concave", fid, case["young"], case["poisson"], progress=say,
-                                mounting=case["mounting"])
+        bodies = prepare_bodies(pair, "concave", fid, case.young, case.poisson, progress=say,
+                                mounting=case.mounting)
         lm = loaded_model(pair, bodies)
         h = hertz_check(pair, lm)
         h["seconds"] = time.perf_counter() - t0
@@ -98,7 +98,7 @@ def run_bevel_validate(case_path: str, out: str, progress: bool = True) -> int:
     report["light_load_limit"] = lim
     report["vh_table_mm_per_0.1mm"] = vh_table(pair, bodies)
     write_json_atomic(d / "bevel_validate.json", report)
-    print(f"Bevel validation: {case['name']}")
+    print(f"Bevel validation: {case.name}")
     for key in ("hertz_near_field", "hertz_without_near_field"):
         h = report[key]
         if "p0" not in h:
@@ -138,8 +138,8 @@ def run_bevel_convergence(case_path: str, out: str, positions: int = 8, torque_n
     rows = []
     for name in ("coarse", "default", "fine"):
         t0 = time.perf_counter()
-        bodies = prepare_bodies(pair, "concave", BevelFidelity.named(name), case["young"], case["poisson"],
-                                progress=say, mounting=case["mounting"])
+        bodies = prepare_bodies(pair, "concave", BevelFidelity.named(name), case.young, case.poisson,
+                                progress=say, mounting=case.mounting)
         t1 = time.perf_counter()
         f = _cycle_figures(loaded_model(pair, bodies), positions, torque_nm)
         f.update(fidelity=name, compliance_s=t1 - t0, positions_s=time.perf_counter() - t1,
@@ -172,8 +172,8 @@ def run_bevel_bench(case_path: str, repeat: int = 3, positions: int = 21, fideli
         pair = build_pair(case)
         t["synthesis"] = time.perf_counter() - t0
         t0 = time.perf_counter()
-        bodies = prepare_bodies(pair, "concave", BevelFidelity.named(fidelity), case["young"], case["poisson"],
-                                mounting=case["mounting"])
+        bodies = prepare_bodies(pair, "concave", BevelFidelity.named(fidelity), case.young, case.poisson,
+                                mounting=case.mounting)
         lm = loaded_model(pair, bodies)
         t["compliance"] = time.perf_counter() - t0
         phi = cycle_positions(positions, pair.blank.pinion.z)

@@ -17,7 +17,7 @@ from ..case import FIDELITIES, load_case
 from ..cylindrical.loaded_model import Fidelity, prepare
 from ..cylindrical.loaded import te_arcsec
 from ..cylindrical.model import build_model
-from ..results import write_json
+from ..outputs import write_json
 from ..cylindrical.run import analyse, cycle_rolls
 
 __all__ = ["LADDER", "run_convergence"]
@@ -79,9 +79,7 @@ def run_convergence(case_path: str, out: str = "out/convergence", positions: int
     outdir.mkdir(parents=True, exist_ok=True)
     write_json(outdir / "convergence.json", {"case": case.name, "rungs": [
         {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in r.items()} for r in rows]})
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .. import figures as plt
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for key, lab in (("err_te", "loaded TE"), ("err_p_pitch", "peak pressure (pitch point)"),
                      ("err_root", "pinion root stress"), ("err_root_gear", "gear root stress")):

@@ -77,9 +77,7 @@ def _default_rolls_deg(z1: int) -> list[float]:
 
 
 def _plot(rows: list[dict], out: Path, title: str) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from .. import figures as plt
     fig, ax = plt.subplots(1, 3, figsize=(13, 4))
     for solver, mk in (("ours", "o"), ("calculix", "s")):
         r = sorted((x for x in rows if x["solver"] == solver and x["reference"]), key=lambda x: x["roll_deg"])

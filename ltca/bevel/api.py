@@ -1,0 +1,36 @@
+"""The bevel kind in the one core (:mod:`ltca.core`): its plan, execute, result and write functions."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..cases import Case
+from ..core import Analysis, figures_from
+from ..results import LoadedResult
+from . import analysis
+
+__all__ = ["ANALYSIS"]
+
+
+def _plan(case: Case, fidelity, positions, torques_nm, max_output_gb):
+    return analysis.plan(case.record, fidelity, positions, torques_nm, max_output_gb, file=case.file)
+
+
+def _result(case: Case, run: analysis.BevelRun) -> LoadedResult:
+    from .results import bevel_dataset
+    p = run.plan
+    ds, head, plotdata = bevel_dataset(p.case, run.pair, p.asm, p.fid, run.runs, p.torques_nm, run.timings)
+    if run.computed or run.taken_over:
+        head.update(positions_computed=run.computed, positions_taken_over=run.taken_over)
+    run.plotdata = plotdata
+    return LoadedResult(case=case, dataset=ds, summary=head, figures=tuple(figures_from(r) for r in head["torques"]),
+                        timings=dict(run.timings), _state=run)
+
+
+def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
+    from .results import write_files
+    run = result._state
+    head["plots"] = write_files(stage, run.plan.case, run.pair, result.dataset, run.plotdata, run.runs,
+                                run.plan.torques_nm)
+
+
+ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True)

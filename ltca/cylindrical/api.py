@@ -1,0 +1,32 @@
+"""The cylindrical kind in the one core (:mod:`ltca.core`): its plan, execute, result and write functions."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..cases import Case
+from ..core import Analysis, figures_from
+from ..results import LoadedResult
+from . import analysis
+
+__all__ = ["ANALYSIS"]
+
+
+def _plan(case: Case, fidelity, positions, torques_nm, max_output_gb):
+    return analysis.plan(case.record, fidelity, positions, torques_nm, max_output_gb, file=case.file)
+
+
+def _result(case: Case, run: analysis.CylindricalRun) -> LoadedResult:
+    head = run.head
+    if run.computed or run.taken_over:
+        head = {**head, "positions_computed": run.computed, "positions_taken_over": run.taken_over}
+    return LoadedResult(case=case, dataset=run.dataset, summary=head,
+                        figures=tuple(figures_from(r) for r in head["torques"]), timings=dict(head["timings_s"]),
+                        _state=run)
+
+
+def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
+    from .save import write_outputs
+    write_outputs(result._state, head, stage, case_file, report=report, paraview_steps=paraview_steps)
+
+
+ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True)
