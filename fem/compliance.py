@@ -13,9 +13,9 @@ The regular part R(d) is the FE response minus the half-space (Boussinesq) respo
 patch load at the *same* read point, so whatever the FE sees of the patch's spreading and of the
 bilinear grid interpolation cancels; it is read at two depths where the coarse mesh is accurate and
 extrapolated linearly to the flank (it varies linearly with depth there: flank curvature, finite tooth).
-The contact cells add their own half-space response at the flank (:mod:`ltca.cylindrical.contact_cells`). Checked against
-CalculiX (issue 4): a single read depth without the matched subtraction made the FZG pitch-point TE
-3 % too stiff; this split converges to it with the flank element size.
+The contact cells add their own half-space response at the flank (:mod:`ltca.cylindrical.contact_cells`). Against
+CalculiX, a single read depth without the matched subtraction makes the FZG pitch-point TE
+3 % too stiff; this split converges to CalculiX's with the flank element size.
 
 R is stored on the grid and interpolated bilinearly (in flank arc length and axial position) to any
 contact cell, for the source and the receiver alike, so one factorisation serves every mesh position
@@ -272,7 +272,7 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
         Stress read-out points in the fillets, and their teeth.
     recovery : {"element", "nodal"}
         Stress at the read-out points: of the element containing each, or averaged at the nodes as CalculiX's
-        (:func:`fem.readout.stress_matrix`). The cylindrical bodies use "nodal" (issue 18).
+        (:func:`fem.readout.stress_matrix`). The cylindrical bodies use "nodal".
     """
     say = progress or (lambda msg: None)
     t = dict(timings or {})

@@ -6,11 +6,12 @@ side of the loaded flank (:meth:`fem.compliance.BodyCompliance.root_max`; Calcul
 rho the stress falls by about 2 x / rho over a depth x (relative stress gradient of a notch, about 2 / rho:
 Peterson's Stress Concentration Factors, 3rd ed., 2008, ch. 1): on FZG C14 by 20 % between 0.05 and 0.3 mm. The
 straight-edged quadratic tetrahedra (:mod:`fem.solids.spec`) are linear in stress and replace the fillet by chords
-of sagitta h^2 / (8 rho) with kinks of h / rho rad between them. At h = 1.35 mm on a 2 mm fillet (FZG C14 at the
-default fidelity before issue 18) the sagitta is 0.11 mm, twice the read depth, and the stress read 0.05 mm inside
-varied by +-10 % from element to element along the face. The read fillets are therefore meshed at a fraction of
-their smallest radius of curvature (:func:`fillet_size`; 0.4 at the coarse and default fidelities, 0.35 at the fine:
-``ltca.case.FIDELITIES``), whatever the flank element size, and the reads are ``ROOT_STEP`` apart.
+of sagitta h^2 / (8 rho) with kinks of h / rho rad between them. At h = 1.35 mm on a 2 mm fillet (FZG C14's
+flank element size at the default fidelity) the sagitta is 0.11 mm, twice the read depth, and the stress read
+0.05 mm inside varies by +-10 % from element to element along the face. The read fillets are therefore meshed
+at a fraction of their smallest radius of curvature (:func:`fillet_size`; 0.4 at the coarse and default
+fidelities, 0.35 at the fine: ``ltca.case.FIDELITIES``), whatever the flank element size, and the reads are
+``ROOT_STEP`` apart.
 
 Units: mm. Outlines are (n, 2) transverse points with ``kind`` codes (1 fillet) and ``side`` codes (-1, +1), as
 generated (``geometry.involute.ToothProfile``).
@@ -25,7 +26,7 @@ __all__ = ["DEPTH", "ROOT_STEP", "fillet_points", "fillet_radius", "fillet_size"
 DEPTH = 0.05
 #: largest spacing of the read-out points along the fillet and along the face, mm. Along the fillet as CalculiX's
 #: read-out (:mod:`ltca.verify.whole_root`): 10 points over FZG C14's 3.8 mm fillet (0.42 mm apart) missed the
-#: peak by up to 6 % (issue 18). Along a spur face the stress is nearly flat.
+#: peak by up to 6 %. Along a spur face the stress is nearly flat.
 ROOT_STEP = (0.1, 1.0)
 
 

@@ -2,7 +2,7 @@
 
 pypardiso (:class:`pypardiso.PyPardisoSolver`) holds PARDISO's handle and parameters; the two phases are called
 through its ``_mkl_pardiso`` with the arguments of its ``_call_pardiso`` (see :func:`pardiso_factor` for what is
-done differently and why). These are pypardiso's internals, so pyproject.toml holds it below 0.5 (0.4.7 measured).
+done differently and why). These are pypardiso's internals, so pyproject.toml holds it below 0.5.
 """
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ __all__ = ["mkl_rt_path", "pardiso_factor"]
 
 def mkl_rt_path() -> None:
     """Tell pypardiso where MKL's runtime is, once per process: without it every solver instance (and the one
-    pypardiso builds when imported) searches the Python prefix with a recursive glob (0.8-1.2 s each, measured).
+    pypardiso builds when imported) searches the Python prefix with a recursive glob (about 1 s each).
     The library's usual places (``lib`` of the prefix, ``Library/bin`` on Windows) are looked at first."""
     import ctypes.util
     import glob
@@ -99,6 +99,6 @@ def pardiso_factor(Kff: sp.csr_matrix, symmetric: bool):
     # Cholesky factor of an SPD matrix never has; the factorisation itself is unchanged.
     if solver.get_iparm(14) == 0:
         solver.set_iparm(8, 0)
-    # one matrix per solver handle: phase -1 frees all of its memory (phase 0, the factor only, left about 1.3 kB
-    # per dof resident, measured: 0.09 GB per factorisation of a 68 k dof body, never returned)
+    # one matrix per solver handle: phase -1 frees all of its memory (phase 0 frees the factor only and leaves
+    # about 1.3 kB per dof resident)
     return (lambda b: call(33, b)), lambda: solver.free_memory(everything=True)

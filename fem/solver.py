@@ -10,26 +10,20 @@ One factorisation serves many right-hand sides (the compliance of a gear body is
 - ``"cholmod"``: scikit-sparse CHOLMOD (supernodal Cholesky), when importable.
 - ``"splu"``: scipy SuperLU; always available, far slower beyond ~50k dofs.
 
-Measured on the 2-core machine: see DESIGN.md, "Measured on this machine".
-
-Back-substitution cost (FZG C14 pinion body: 63k free dofs, 216 patch loads, 1476 observed rows;
-2 shared cores, medians of 3):
+Back-substitution (FZG C14 pinion body: 63k free dofs, 216 patch loads, 1476 observed rows):
 
 - MKL's default ``iparm(8) = 2`` (which pypardiso inherits) runs two steps of iterative refinement
-  in *every* phase-33 solve: three back-substitutions plus two residuals, 10.5 s. Without
-  refinement, 2.7-3.0 s, and the answers differ by 6e-13 relative. A Cholesky factor without
-  perturbed pivots needs no refinement, so it is switched off when ``iparm(14) == 0``.
-- MKL's partial solve (``iparm(31)``, sparse right-hand sides and selected solution components)
-  is silently ignored unless set before the analysis phase; set there, with the ~10k load and
-  observed dofs marked, it gives a factor ~8x slower (~26 s against ~3 s) and a solve no faster
-  than the plain one without refinement. Not used.
-- ``iparm(25)`` (parallel solve variants) made no difference.
+  in *every* phase-33 solve: three back-substitutions plus two residuals, about 3.5 times one plain
+  solve. A Cholesky factor without perturbed pivots needs no refinement (the answers agree to 6e-13
+  relative), so it is switched off when ``iparm(14) == 0``.
+- MKL's partial solve (``iparm(31)``, sparse right-hand sides and selected solution components) is
+  not used: it takes effect only when set before the analysis phase, and then the factorisation is
+  about 8 times slower for a solve no faster than the plain one.
 - With `observe`, ``observe @ K^-1 @ F = (K^-1 @ observe.T).T @ F`` (K symmetric), so the cheaper
   side is solved for: the loads when ``k <= r``, the observed rows when ``r < k``.
-- Around the factor (issue 11, FZG C14, 68k dofs per body): PARDISO is called directly (:mod:`fem.pardiso`: no
-  zeroed and C-reordered copy of the solution, no SHA-1 of the matrix), the observed rows gather only the solution
-  rows they read (:class:`_Gather`), and the free block is cut in one pass over K (:func:`_free_block`): about
-  0.5 s CPU per body less, the same numbers to the last bit.
+- Around the factor: PARDISO is called directly (:mod:`fem.pardiso`: no zeroed and C-reordered copy of the
+  solution, no SHA-1 of the matrix), the observed rows gather only the solution rows they read
+  (:class:`_Gather`), and the free block is cut in one pass over K (:func:`_free_block`).
 """
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """Tooth errors of a workpiece: single pitch deviations and the tooth position errors they add up to.
 
-A cutting machine's indexing error (ltca.chain, seed 002) bounds the single pitch deviation f_pt of
+A cutting machine's indexing error (ltca.chain, Nguyen et al. 2020) bounds the single pitch deviation f_pt of
 every pitch; the teeth must close the circle, so the deviations sum to zero over a revolution. The
 cumulative sum gives each tooth's position error (ISO 1328-1: cumulative pitch deviation F_p,k), which is
 what the separation field consumes (``FlankModification.pitch_errors``).

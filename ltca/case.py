@@ -24,7 +24,7 @@ DEG = math.pi / 180.0
 #: (profile x face per flank), contact cells across the Hertz width, face slices, near-field on/off, and the
 #: longest contact cell along a helical face (x module; more slices on a wide helical face), the widest contact cell
 #: across the line (x module; it resolves a tip edge's gap kink, :meth:`Fidelity.cell_size`), and the element size
-#: on the loaded teeth's read fillets (x their smallest radius of curvature, at most h_flank; fem.fillet, issue 18).
+#: on the loaded teeth's read fillets (x their smallest radius of curvature, at most h_flank; fem.fillet).
 FIDELITIES: dict[str, dict[str, Any]] = {
     "coarse": dict(h_flank=0.45, h_body=1.6, grid=(7, 6), cells_per_b=3, slices=8, near_field=True, window=1.8,
                    slice_length=0.5, ds_max=0.04, fillet=0.4),

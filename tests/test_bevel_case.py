@@ -1,4 +1,4 @@
-"""Spiral bevel case file: run_bevel_tca writes summary.json per issue 3; case mistakes raise CaseError."""
+"""Spiral bevel case file: run_bevel_tca writes summary.json; case mistakes raise CaseError."""
 import json
 from pathlib import Path
 
@@ -24,7 +24,7 @@ def test_summary_meets_seed_targets(summary):
         f = disk["flanks"][label]
         for key in ("path_angle_deg", "te_amplitude_arcsec", "contact_ratio", "path_straightness_mm"):
             assert key in f
-        assert abs(f["path_angle_deg"] - eta) < 1.0                    # seed 000 sec. 4 targets
+        assert abs(f["path_angle_deg"] - eta) < 1.0                    # Cao et al. 2008 sec. 4 targets
         assert f["te_amplitude_arcsec"] == pytest.approx(te, rel=0.05)
         # measured apart from the continuous TCA the synthesis drives: the separation-field TCA's TE range
         assert f["separation_te_range_arcsec"] == pytest.approx(te, rel=0.02)
@@ -37,7 +37,7 @@ def test_summary_meets_seed_targets(summary):
 
 
 def test_te_parabola_curvature_by_hand():
-    """Seed 000 Eq. 2-3: TE = (m21 / 2) phi1^2 reaches the magnitude at the transfer points phi1 = +-pi / z1, so
+    """Cao et al. 2008 Eq. 2-3: TE = (m21 / 2) phi1^2 reaches the magnitude at the transfer points phi1 = +-pi / z1, so
     m21 = -2 TE / (pi / z1)^2; z1 = 12, TE = 8.25 arcsec = 3.99970e-5 rad: m21 = -1.16713e-3 rad/rad^2."""
     from geometry.bevel.synthesis import te_curvature
     te = 8.25 / 206264.806
@@ -66,7 +66,7 @@ def test_benchmark_reports_medians(monkeypatch):
     """The benchmark times each stage and reports the median of the repeats: every stage replaced by a stand-in
     that advances a fake clock by a known time per repeat (synthesis 3, 1, 2 s -> median 2 s; generation 0.5 s
     per member call + 0.25 s per pinion flank; tca 5, 7, 6 s; separation 9, 8, 10 s). Speed itself is measured
-    and printed, not asserted (issue 3 targets 2 s, 2 s, 10 s)."""
+    and printed, not asserted."""
     import time as _time
     import geometry.bevel.generation as gen
     import ltca.bevel.run as run

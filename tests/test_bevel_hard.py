@@ -37,10 +37,10 @@ def test_nine_tooth_pinion_undercut_is_detected_and_reported(side):
 
 
 def test_coarse_march_steps_still_generate_the_whole_flank():
-    """9 teeth, 16 deg: the convex pinion flank's lower part once raised 'no solution of the equation of meshing'
-    (a MeshingError naming the region); it was the node-by-node march's step, not the geometry: continued in
-    sub-steps, every node meets the equation of meshing (residual < 1e-9 mm) and the flank has no undercut.  A
-    cutter with no solution over part of the blank still raises the error naming the region
+    """9 teeth, 16 deg: the node-by-node march over the convex pinion flank's lower part needs sub-steps (a
+    single step there finds no solution of the equation of meshing); continued in sub-steps, every node meets
+    the equation of meshing (residual < 1e-9 mm) and the flank has no undercut.  A cutter with no solution over
+    part of the blank still raises the error naming the region
     (``test_bevel_generation.py::test_no_solution_names_region``)."""
     bl = _blank(9, 16.0, 35.0)
     fc = pinion_settings(bl).convex

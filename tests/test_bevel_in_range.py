@@ -1,4 +1,4 @@
-"""Issue 12: bevel inputs inside the schema's ranges that the synthesis may not meet run through the whole
+"""Bevel inputs inside the schema's ranges that the synthesis may not meet run through the whole
 ``ltca tca`` (synthesis and TCA of both flanks): they exit 0 with a valid summary, or exit 2 naming the fields
 that drive the failure; never a traceback.  (15-20 s each.)"""
 import json

@@ -1,4 +1,4 @@
-"""Bevel LTCA (issue 13): elliptic Hertz, limits, torque balance, misalignment physics, edge contact, hard cases.
+"""Bevel LTCA: elliptic Hertz, limits, torque balance, misalignment physics, edge contact, hard cases.
 
 References: Hertz elliptic contact (Johnson 1985 sec. 4.2) with the relative curvature of the *TCA* (Litvin's
 contact ellipse from the principal curvatures of both generated surfaces, geometry.bevel.tca), independent of
@@ -100,13 +100,12 @@ def test_loaded_te_tends_to_unloaded(lm):
 
 
 def test_light_load_deficit_is_the_hertz_approach(pair, lm):
-    """Why the loaded TE does not meet the unloaded one within 0.1 arcsec at 1 N m (issue 13 asks it): the deficit
+    """Why the loaded TE does not meet the unloaded one within 0.1 arcsec at 1 N m: the deficit
     is the Hertz approach of a point contact, delta = 3 F K(e) / (2 pi a E*) (Johnson eq. 4.41c) with the TCA's
     relative curvature at the mean point (independent of the LTCA's gaps), turned into a gear rotation by the work
     balance T2 dtheta2 = F d delta, plus the bodies' part, linear in the torque: dTE = delta(F) F / T2 + c T to 1 %
-    from 1e-3 to 1 N m, c from 1 N m. Measured (default fidelity): at 1 N m 2.964 arcsec = 2.680 Hertz + 0.284
-    bodies; at 0.1 N m 0.604 = 0.577 + 0.027; the approach alone is 27 times the 0.1 arcsec asked at 1 N m and
-    falls below it only under 0.01 N m (0.124 arcsec there)."""
+    from 1e-3 to 1 N m, c from 1 N m. At 1 N m the Hertz approach alone is about 27 times 0.1 arcsec; it falls
+    below 0.1 arcsec only under 0.01 N m."""
     r = tca(pair, "concave", steps_per_cycle=16, max_cycles=1.0)
     i0 = int(np.argmin(np.abs(r.phi1)))
     d = 0.00632                                       # the approach of the TCA's ellipse (geometry.bevel.tca)
@@ -201,7 +200,7 @@ def test_bevel_ltca_run_writes_outputs(tmp_path):
 
 
 def test_flat_te_pinion_converges_with_edge_contact(tmp_path):
-    """A pinion synthesised with m21 near 0 (TE magnitude 1 arcsec, an eighth of the seed's): no parabola to absorb
+    """A pinion synthesised with m21 near 0 (TE magnitude 1 arcsec, an eighth of Cao et al.'s): no parabola to absorb
     the transfer, so the pairs hand over at the flank edges; every position converges and the edges are named."""
     from ltca.bevel.analysis import run_bevel_ltca
     text = CASE.read_text().replace("te_magnitude_arcsec = 8.25", "te_magnitude_arcsec = 1.0")

@@ -1,10 +1,10 @@
-"""Bevel bodies held at their mounting in service (issue 13): the pinion's shaft seat, the gear's back face.
+"""Bevel bodies held at their mounting in service: the pinion's shaft seat, the gear's back face.
 
 The blank of each FE body runs from the root cone down to the case's ``[mounting]``; the support facets lie on
 that cylinder and that plane (geometry, exact to rounding) and the case keys are range-checked against the blank.
 What the mounting does to the answer is guarded by the frozen CalculiX reference (whole members on the same seat
-and back face, ``tests/test_reference_calculix_bevel.py``): loaded TE within 3 % at the two-pair position, where
-the blank cut 1.2 whole depths under the root cone was 9.5 % low.
+and back face, ``tests/test_reference_calculix_bevel.py``): loaded TE within 3 % at the two-pair position
+(a blank cut 1.2 whole depths under the root cone instead reads it 9.5 % low).
 """
 from pathlib import Path
 

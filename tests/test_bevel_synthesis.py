@@ -1,4 +1,4 @@
-"""Pinion synthesis of seed 000 (Cao et al. 2008): local synthesis at M0, three control points, Em1 = 0.
+"""Pinion synthesis of Cao et al. (2008): local synthesis at M0, three control points, Em1 = 0.
 
 Every target is checked by an independent continuous-tangency TCA of the *generated* surfaces (the
 synthesis only uses second-order relations at M0 and the TCA at the two transfer points).
@@ -17,7 +17,7 @@ from geometry.bevel.machine import MemberCut
 from geometry.bevel.synthesis import FlankTarget, generated_curvature, local_synthesis, te_curvature
 from geometry.bevel.tca import RAD_PER_ARCSEC, BevelPair, curvature_tensor, tca
 
-# seed 000 sec. 4: working flank (pinion concave) 22 deg / 8.25 arcsec, coast 14 deg / 11.25 arcsec.
+# Cao et al. 2008 sec. 4: working flank (pinion concave) 22 deg / 8.25 arcsec, coast 14 deg / 11.25 arcsec.
 # Our eta2 is signed (positive towards the tooth top going to the heel): the coast path runs the other way.
 TARGETS = {"concave": FlankTarget(np.deg2rad(22.0), 8.25 * RAD_PER_ARCSEC, 6.0),
            "convex": FlankTarget(np.deg2rad(-14.0), 11.25 * RAD_PER_ARCSEC, 6.0)}

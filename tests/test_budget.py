@@ -1,7 +1,7 @@
-"""Drive-train budget against seed 003 (Wang et al., Chinese Journal of Engineering p. 1061).
+"""Drive-train budget against Wang et al. (Chinese Journal of Engineering p. 1061).
 
 Table 2 gives the stiffnesses, Table 3 the member deformations in 1e-3 deg at 2.5/5/7.5/10 N m.
-The gear face width x base radius^2 and the ball-spline pitch radius are not on the seed page; the
+The gear face width x base radius^2 and the ball-spline pitch radius are not on the paper's page; the
 case file uses the values these tables imply (b = 20 mm, r_b = 80 mm; r = 16 mm), derived below.
 """
 from __future__ import annotations
@@ -17,7 +17,7 @@ from ltca.errors import CaseError
 
 CASE = str(CASES / "budget_wang.toml")
 TORQUES = np.array([2.5, 5.0, 7.5, 10.0])
-# seed 003, Table 3 (p. 1061), theoretical deformation / (1e-3 deg)
+# Wang et al., Table 3 (p. 1061), theoretical deformation / (1e-3 deg)
 TABLE3 = {"gear": [0.06, 0.11, 0.17, 0.22], "shaft": [8.64, 17.27, 25.91, 34.55],
           "spline": [1.06, 1.69, 2.21, 2.68], "coupling": [7.66, 15.32, 22.98, 30.64]}
 TABLE3_TOTAL = [17.42, 34.39, 51.27, 68.09]

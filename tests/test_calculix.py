@@ -1,4 +1,4 @@
-"""CalculiX cross-check (issue 4): deck writer and readers without ccx; one position against ccx (slow)."""
+"""CalculiX cross-check: deck writer and readers without ccx; one position against ccx (slow)."""
 from __future__ import annotations
 
 import shutil
@@ -92,8 +92,8 @@ def test_double_contact_against_calculix(fzg_lm, tmp_path):
 
     CI-sized CalculiX model: contact band of 300 um elements and our coarse fidelity's element sizes
     elsewhere (~110k dofs, ~2 min on 2 cores). At the pitch point this model's TE is within 0.2 % of
-    the 100 um / default-body one (121.41 vs 121.24 arcsec), so TE and load sharing are compared at
-    the issue's bounds (3 %, 0.03); its contact pressure is not resolved at this size and is not compared
+    the 100 um / default-body one, so TE and load sharing are compared at the bounds of
+    ``ltca.verify.crosscheck.BOUNDS`` (3 %, 0.03); its contact pressure is not resolved at this size and is not compared
     (`ltca validate --reference calculix` does, on the refined ladder)."""
     import dataclasses
     from ltca.verify.calculix import ccx_ladder, solve_ccx, solve_ours

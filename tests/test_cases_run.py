@@ -39,9 +39,9 @@ def test_cylindrical_case_runs_and_writes_results(name, tmp_path):
 
 def test_every_case_file_is_covered():
     # budget and chain cases run in test_budget.py / test_chain.py, the bevel case in test_bevel_case.py,
-    # the planetary satellite (seed 004) through `ltca run`, `tca` and `forming` in test_planetary.py; the [design]
-    # table of fzg_c14_optimise.toml through `ltca optimise` in test_design.py, spiral_bevel_optimise.toml's in
-    # test_design_bevel.py
+    # the planetary satellite (Kapitonov et al. 2014) through `ltca run`, `tca` and `forming` in test_planetary.py;
+    # the [design] table of fzg_c14_optimise.toml through `ltca optimise` in test_design.py,
+    # spiral_bevel_optimise.toml's in test_design_bevel.py
     covered = set(CYLINDRICAL) | {"budget_wang.toml", "chain_zftkk250.toml", "spiral_bevel_cao2008.toml",
                                   "eccentric_planetary_satellite.toml", "spiral_bevel_optimise.toml"}
     assert {p.name for p in CASES.glob("*.toml")} <= covered

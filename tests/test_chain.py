@@ -1,4 +1,4 @@
-"""Machine-chain ratio errors against seed 002 (Nguyen et al., J. Sci. & Tech. HaUI 56(4) 2020).
+"""Machine-chain ratio errors against Nguyen et al. (J. Sci. & Tech. HaUI 56(4) 2020).
 
 Printed results (Sect. 3 and 4): indexing 0.154 % (z1 = 15, Table 4) and 0.23 % (z2 = 30, Table 6),
 pitch errors 20.64 um / 30.46 um (Tables 4, 6: 20.640953, 30.45528), envelope 0.205 % (z1, Table 8:

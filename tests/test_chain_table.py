@@ -1,4 +1,4 @@
-"""``ltca chain`` prints no nan (issue 16): the fp column of the envelope chains, whose source prints only F per
+"""``ltca chain`` prints no nan: the fp column of the envelope chains, whose source prints only F per
 element (fi' and Fpr are lost, so fp = Fpr / z is unknown), shows '-' with a note, and the CSV leaves the cell
 empty."""
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Where the contact cells sit (issue 18: a tenth-of-a-cell shift must be caught).
+"""Where the contact cells sit (a tenth-of-a-cell shift must be caught).
 
 The cells of a spur flank lie on the torque-independent lattice of ``ltca.cylindrical.flank_lattice``: cell i
 of a strip is centred at s = s_form + (i + 1/2) ds on the developed flank (s the involute arc length
@@ -42,5 +42,5 @@ def test_cells_on_the_lattice_and_pressure_on_the_contact_line(fzg_lm, fzg_case,
     for j in np.unique(r.slice[k])[1:-1]:            # away from the face ends (their stiffness gradient tilts it)
         m = k & (r.slice == j)
         centre = r.force[m] @ r.s[m] / r.force[m].sum()
-        # 0.08 of a cell: -0.065 measured at 4 deg on the fillet-resolved body of issue 18 (within 0.06 before)
+        # 0.08 of a cell: the centroid sits -0.065 cell off at 4 deg
         assert abs(centre - s_line) < 0.08 * ds, (j, (centre - s_line) / ds)

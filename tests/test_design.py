@@ -1,4 +1,4 @@
-"""ltca optimise (issue 14, cylindrical part): the [design] table, the search on a compliance computed once, the
+"""ltca optimise (cylindrical part): the [design] table, the search on a compliance computed once, the
 resumable history, and the known optimum of FZG C14's linear tip relief.
 
 Fast: bad tables exit 2 naming the field; a tiny search (one variable, few positions) writes every file and

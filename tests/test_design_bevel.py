@@ -1,4 +1,4 @@
-"""ltca optimise, bevel backend (issue 14): eta2 and m21 of the working flank of the shipped spiral bevel case.
+"""ltca optimise, bevel backend: eta2 and m21 of the working flank of the shipped spiral bevel case.
 
 Fast: bad bevel [design] tables exit 2 naming the field before any FE work; a tiny search (one variable, one torque,
 4 positions) writes every file and resumes; a design the geometry cannot make is an infeasible candidate with its
@@ -90,7 +90,7 @@ def test_tiny_bevel_search_writes_results_and_resumes(tmp_path):
     s = optimise(str(case), str(out), progress=False, workers=1, full_runs=False).summary
     assert s["kind"] == "bevel" and s["evaluations"]["search"] <= 4
     opt, base = s["optimum"], s["baseline"]
-    assert base["values"] == {"working_te_magnitude_arcsec": 8.25}          # seed 000's working flank
+    assert base["values"] == {"working_te_magnitude_arcsec": 8.25}          # the working flank of Cao et al. 2008
     assert opt["feasible"] and opt["objective_arcsec"] < base["objective_arcsec"]
     for f in ("design.json", "history.jsonl", "settings.csv", "optimum.toml", "baseline.toml", "harris_map.png",
               "history.png"):
@@ -103,7 +103,7 @@ def test_tiny_bevel_search_writes_results_and_resumes(tmp_path):
     assert "design" not in opt_case
     box = s["tolerance_box"]["optimum"]["corners"]
     assert len(box) == 9 and all(r["edge_margin_mm"] >= 0 for r in box)
-    # the seed-vs-optimum table: seed 000's targets, the candidates' TE, the worst corner of the box
+    # the seed-vs-optimum table: the targets of Cao et al. 2008, the candidates' TE, the worst corner of the box
     rows = {r["quantity"]: (r["baseline"], r["optimum"]) for r in s["seed_vs_optimum"]["rows"]}
     assert rows["working path angle eta2 (deg)"][0] == pytest.approx(22.0)
     assert rows["working TE magnitude m21 (arcsec)"] == pytest.approx(
@@ -181,10 +181,9 @@ def test_seed_vs_optimum_table_by_value():
 def test_search_finds_the_grid_optimum_of_eta2_m21(tmp_path):
     """The shipped pair at its middle torque 175 N m, the pressure limit alone (no edge margin): the 9 x 9
     objective map over (eta2 0-32 deg, m21 1-13 arcsec) is the brute-force reference; the case's search
-    (cobyqa-corners from seed 000's design, 22 deg / 8.25 arcsec) lands within 0.5 deg and 5 % of its variables or
-    2 % of its objective with at most 81 / 4 candidates. Measured: grid optimum at the corner (0 deg, 1 arcsec),
-    1.993 arcsec; the search found (0 deg, 1.435 arcsec), 1.866 arcsec (6 % below the grid's best: between its
-    nodes), in 20 candidates (plain COBYQA stopped in another basin, 2.51 arcsec)."""
+    (cobyqa-corners from the design of Cao et al. 2008, 22 deg / 8.25 arcsec) lands within 0.5 deg and 5 % of its
+    variables or 2 % of its objective with at most 81 / 4 candidates (the grid's optimum is at a corner, where
+    plain COBYQA from the start stops in another basin)."""
     from ltca.design import optimise
     case = _case(tmp_path, torques=[175.0], map_points=9, harris_torque_nm=[100.0, 175.0],
                  variables={"working_path_angle_deg": {"lower": 0.0, "upper": 32.0},
@@ -206,8 +205,8 @@ def test_search_finds_the_grid_optimum_of_eta2_m21(tmp_path):
 
 @pytest.mark.slow      # 14 m21 x 3 torques, 8 positions: 4 min on a busy 2-core machine (load 6-7)
 def test_optimal_m21_grows_with_the_torque():
-    """The issue's physics: the optimal bevel m21 grows with the design torque. The working flank at seed 000's
-    path angle (22 deg), each torque the only one, m21 1-55 arcsec (60 cannot be cut: no admissible blade through
+    """The optimal bevel m21 grows with the design torque. The working flank at the path angle of Cao et al.
+    (2008) (22 deg), each torque the only one, m21 1-55 arcsec (60 cannot be cut: no admissible blade through
     the mean point); the constraint keeps the loaded pattern 1 mm off the toe and the heel.
 
     Bounds from the physics, not from an earlier run:

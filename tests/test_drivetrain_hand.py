@@ -1,15 +1,15 @@
-"""Budget (seed 003) and machine-chain (seed 002) figures by hand from the papers' formulas (issue 18).
+"""Budget (Wang et al.) and machine-chain (Nguyen et al. 2020) figures by hand from the papers' formulas.
 
 The tests in test_budget.py and test_chain.py compare with the papers' tables; some of their inputs (gear
-b r_b^2, ball-spline radius, the printed zk/fp/F of seed 002) were read back from those same tables, which makes
+b r_b^2, ball-spline radius, the printed zk/fp/F of Nguyen et al.) were read back from those same tables, which makes
 those rows consistency checks. Here the rule-based computation is checked against hand calculations written out
 from the formulas, with their sources, independent of the code path:
 
-* seed 003 (Wang et al., p. 1061), Eq. 19: B0 = (1/k_g + 1/k_a + 1/k_s + 1/k_c) T + j_phi0; Table 2 stiffnesses:
+* Wang et al. (p. 1061), Eq. 19: B0 = (1/k_g + 1/k_a + 1/k_s + 1/k_c) T + j_phi0; Table 2 stiffnesses:
   gear mesh c = 20 N/(um mm) per face width (torsional k_g = c b r_b^2), shaft 289.44 N m/deg, ball spline
   k = 9.768e7 P^(1/3) N/m with P = T / r (deflection P / k, angle P / (k r)), diaphragm coupling 1.87e4 N m/rad.
   Shaft and coupling use Table 2 alone, so they are an independent check of Table 3's rows.
-* seed 002 (Nguyen et al., HaUI 56(4) 2020, Sect. 2): per element n = turns in one cycle (through the tooth
+* Nguyen et al. (HaUI 56(4) 2020, Sect. 2): per element n = turns in one cycle (through the tooth
   ratios), zk = frac(n) z, fp = Fpr / z, F = fi' (zk = 0) or fi' + zk fp, dphi = 2 F / D; rotations n 360 +- dphi
   (errors on one shaft add); chain ratio error = prod(max ratios) - prod(min ratios), in % of the nominal ratio.
 """
@@ -25,7 +25,7 @@ from conftest import CASES
 DEG = math.pi / 180.0
 
 
-# ---------------------------------------------------------------- seed 003 budget
+# ---------------------------------------------------------------- Wang et al. budget
 def test_budget_rows_by_hand_at_10_nm():
     from ltca.drivetrain.budget import DEG as BDEG, compute_budget, load_budget_case
     T = 10.0                                                     # N m, Table 3's last column
@@ -53,9 +53,9 @@ def test_budget_rows_by_hand_at_10_nm():
     assert B0 * 1e3 == pytest.approx(68.09, abs=0.01)            # Table 3 theoretical total
 
 
-# ---------------------------------------------------------------- seed 002 chain
+# ---------------------------------------------------------------- Nguyen et al. 2020 chain
 def _by_hand(z, D, link, fi, Fpr, input_turns):
-    """Seed 002 Sect. 2 rules, written out (see the module docstring)."""
+    """Nguyen et al. 2020 Sect. 2 rules, written out (see the module docstring)."""
     n = [input_turns]
     for k in range(1, len(z)):
         n.append(n[-1] * (z[k - 1] / z[k] if link[k] == "mesh" else 1.0))

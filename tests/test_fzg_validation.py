@@ -43,8 +43,7 @@ def test_pitch_point_matches_hertz_with_coarse_flank_mesh(fzg_lm, fzg_case):
     assert abs(hc.p0_error) < 0.03, hc
     assert abs(hc.b_error) < 0.05, hc
     # the line load is not uniform over the face: the tooth's free end faces make the ends more
-    # compliant, so they carry less (CalculiX shows the same, fem/calculix; the ends' share was inverted
-    # before the near field's half-space part was matched to the FE patch loads)
+    # compliant, so they carry less (CalculiX shows the same, fem/calculix)
     print(f"line load over the face: min {hc.line_load_min:.1f}, mid {hc.line_load_mid:.1f}, "
           f"max {hc.line_load_max:.1f} N/mm (mean {hc.line_load_mean:.1f}); p0 {hc.p0_error:+.4f}, "
           f"b {hc.b_error:+.4f} against Hertz")
@@ -125,8 +124,8 @@ def test_double_contact_pressures_match_local_hertz(fzg_lm, fzg_case, roll_deg):
 
 def test_loaded_te_does_not_depend_on_the_read_depth(fzg_case, fzg_model, tmp_path):
     """The near-field split must not depend on where the FE is read: pitch-point TE for d = 0.7 and 1.35 mm
-    (default 1.01) within 0.5 %. The earlier split (cell half-space subtracted from a patch-loaded FE, one
-    depth) moved by ~1.2 % over the same range and was 3 % stiffer than CalculiX (issue 4)."""
+    (default 1.01) within 0.5 % (a split with the cell half-space subtracted from a patch-loaded FE at one
+    depth moves by about 1.2 %)."""
     from ltca.case import FIDELITIES
     from ltca.cylindrical.loaded_model import Fidelity, prepare
     from ltca.cylindrical.loaded import te_arcsec

@@ -106,8 +106,8 @@ def test_internal_gear_is_held_at_its_outer_rim():
 
 
 def test_read_fillets_are_meshed_at_h_fillet_and_nothing_else_changes(fzg_model):
-    """Issue 18: the named fillets get edges of about h_fillet, the other fillets keep h_flank; without h_fillet the
-    spec (its hash: the mesh caches) is what it was."""
+    """The named fillets get edges of about h_fillet, the other fillets keep h_flank; without h_fillet the
+    spec (its hash: the mesh caches) does not change."""
     from fem.solids import build_gear_body
     p = fzg_model.pinion
     plain = _spec(p, 20.0, 14.0, h_flank=2.0, h_body=6.0)

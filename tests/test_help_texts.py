@@ -1,5 +1,5 @@
-"""Help texts (issue 16): every option of every command has a help; no source jargon ("seed 002") in the README
-or --help; the CalculiX times of --help are the README's."""
+"""Help texts: every option of every command has a help; no source-file jargon ("seed" and a three-digit
+number) in the README or --help; the CalculiX times of --help are the README's."""
 from __future__ import annotations
 
 import argparse

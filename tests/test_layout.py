@@ -1,4 +1,4 @@
-"""The package layout (issue 10): no import circles, and imports run one way, geometry <- fem <- ltca.
+"""The package layout: no import circles, and imports run one way, geometry <- fem <- ltca.
 
 Every .py file under geometry/, fem/ and ltca/ is parsed with ``ast``; every import counts (module level,
 inside functions, under ``TYPE_CHECKING``), relative imports resolved. ``from p import name`` is an edge

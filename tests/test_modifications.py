@@ -1,4 +1,4 @@
-"""Flank modifications by identities and closed forms (issue 18), on the FZG C14 bodies (gaps only: the
+"""Flank modifications by identities and closed forms, on the FZG C14 bodies (gaps only: the
 compliance of the session's ``fzg_lm`` serves every variant).
 
 - zero modifications are bit-for-bit the unmodified pair (unloaded and loaded);
@@ -175,7 +175,7 @@ def test_symmetric_crowning_gives_symmetric_load(fzg_lm, fzg_case):
         lc, zc = _face_loads(solve_position(with_case(fzg_lm, **_mods(fzg_case, pinion=dict(lead_crowning=C))),
                                             0.0, T))
         assert abs(zc) < 0.02
-        # 3 %: the fillet-resolved body (issue 18) is an unstructured gmsh mesh, not mirror-symmetric in z: the
+        # 3 %: the fillet-resolved body is an unstructured gmsh mesh, not mirror-symmetric in z: the
         # slice loads of a symmetric case differ by up to 2.2 % of the largest (measured), identities aside
         assert np.abs(lc - lc[::-1]).max() < 0.03 * lc.max()
         assert lc[6] > l0[6] and lc[0] < 0.8 * l0[0]
@@ -196,16 +196,14 @@ def test_crowning_keeps_misaligned_load_inside_the_face(fzg_lm, fzg_case):
 
 @pytest.mark.parametrize("f", [0.010, 0.015, -0.015])
 def test_crowning_moves_the_load_as_rigid_slices_do_clear_of_the_face_ends(fzg_lm, fzg_case, f):
-    """The rigid-slice estimate of the centroid shift (issue 18): slices along the face, each a spring of the same
+    """The rigid-slice estimate of the centroid shift: slices along the face, each a spring of the same
     stiffness per unit length and uncoupled (ISO 6336-1's K_Hbeta model), under the gap C (2z/b)^2 + f z/b. As long
     as the loaded zone stays inside the face the slices carry a parabola centred on its vertex, whatever their
     stiffness and the load: the centroid moves from the face middle by z* = -f b / (8 C), here -0.583 / -0.875 mm
     for f = 10 / 15 um on C = 30 um. The estimate holds where its assumption does, with the loaded zone clear of
     the face ends (which are softer than the middle: a slice model has no ends): at 50 N m (a quarter of the
-    rated torque) the zone spans z = -3.5..+2.5 mm, and ours moves by 0.954 / 0.973 of z* (measured; 0.87-1.03 over
-    C = 20-40 um, f = 5-15 um at 25-50 N m, 1 mm lattice). At 200 N m the zone reaches within 1.5 mm of the
-    nearer end and ours moves by 0.74-0.79 of z* at C = 30 um (0.67-0.91 over C = 20-40 um): the soft end pushes
-    the load inwards, the rated-torque test above."""
+    rated torque) the zone spans z = -3.5..+2.5 mm and ours moves within 10 % of z*. At 200 N m the zone reaches
+    within 1.5 mm of the nearer end and the soft end pushes the load inwards (the rated-torque test above)."""
     T = 0.25 * fzg_case.torques[0]
     C, b = 0.030, 14.0
     _, z0 = _face_loads(solve_position(with_case(fzg_lm, **_mods(fzg_case, pinion=dict(lead_crowning=C))), 0.0, T))
@@ -220,12 +218,10 @@ def test_crowning_moves_the_load_as_rigid_slices_do_clear_of_the_face_ends(fzg_l
 
 @pytest.mark.parametrize("roll_deg, edge", [(-6.0, 0), (6.75, 1)], ids=["pinion-tip", "gear-tip"])
 def test_profile_crowning_lowers_the_tip_edge_pressure(fzg_lm, fzg_case, roll_deg, edge):
-    """Issue 18: profile crowning (C_a 5 and 10 um on both members, parabolic over the active profile) takes load
+    """Profile crowning (C_a 5 and 10 um on both members, parabolic over the active profile) takes load
     off the sharp tip edge in contact (the pinion's at the end of its mesh, the gear's at the start, as
     test_edge_contact flags them): the edge zone's load and its peak pressure fall with C_a. The peak of a sharp
-    edge is mesh-dependent (singular), so both are compared on the same cells; its load is not. Measured (200 N m,
-    default fidelity) at C_a 0 / 5 / 10 um: pinion tip 3021 / 2365 / 1681 MPa, 2319 / 1786 / 1254 N; gear tip
-    1263 / 1108 / 945 MPa, 2446 / 1864 / 1294 N."""
+    edge is mesh-dependent (singular), so both are compared on the same cells; its load is not."""
     from ltca.cylindrical.edges import classify
     T = fzg_case.torques[0]
     peaks, loads = [], []

@@ -1,4 +1,4 @@
-"""Seed 004 multi-pair loaded contact (issue 15): the planetary case through `ltca forming`, `tca`, `run`.
+"""Kapitonov et al. 2014 multi-pair loaded contact: the planetary case through `ltca forming`, `tca`, `run`.
 
 One coarse `ltca run` of the shipped case (3 positions, 4 torques, both directions) is shared by the
 load-sharing tests; bad inputs must exit 2 naming the field.
@@ -52,7 +52,7 @@ def test_pairs_grow_with_torque_and_stay_fewer_than_the_seed_claims(run):
     assert all(b >= a for a, b in zip(n, n[1:])) and n[-1] > n[0]
     nmin = [r["pairs_min"] for r in drive]
     assert all(b >= a for a, b in zip(nmin, nmin[1:]))
-    assert n[-1] < 7                       # seed: "7-8 pairs"; found: 3 at 150 % (see the issue's closing note)
+    assert n[-1] < 7                       # Kapitonov et al. 2014: "7-8 pairs"; ours loads 3 at 150 %
     te = [r["te_um_mean"] for r in drive]
     assert all(b > a for a, b in zip(te, te[1:]))
     assert all(b["peak_pressure_mpa"] > a["peak_pressure_mpa"] for a, b in zip(drive, drive[1:]))

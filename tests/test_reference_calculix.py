@@ -1,12 +1,12 @@
-"""Ours against frozen whole-gear CalculiX references (issue 18), without ccx at test time.
+"""Ours against frozen whole-gear CalculiX references, without ccx at test time.
 
-The references ``tests/reference/*_calculix_whole.json`` were computed by ``ltca validate --reference
-calculix-whole ... --freeze FILE`` (the command is stored in each file, with the CalculiX version, the
-deck hashes, the mesh sizes, nodes, elements, wall times and the refinement ladder that checks their
-convergence): whole gears with every tooth built apart from our body (``fem.solids.full_gear``), the
-gear's bore fixed, the pinion's bore on a rigid body turning under the torque, penalty contact.
+The references ``tests/reference/*_calculix_whole.json`` are computed by ``ltca validate --reference
+calculix-whole ... --freeze FILE`` (each file stores the command, the CalculiX version, the deck hashes, the
+mesh sizes, nodes, elements, wall times and the refinement ladder that checks their convergence): whole gears
+with every tooth built apart from our body (``fem.solids.full_gear``), the gear's bore fixed, the pinion's bore
+on a rigid body turning under the torque, penalty contact. The figures themselves are in those files.
 
-Bounds (issue 18): loaded TE and mesh stiffness 2 %, load share 0.03, the flank peak pressure away from
+Bounds: loaded TE and mesh stiffness 2 %, load share 0.03, the flank peak pressure away from
 the face ends and edge contact 5 % (like with like: ours is ``max_flank_pressure_mpa``'s per-position
 value, CalculiX's the elliptic-fit peak over the face slices but the end ones), the root stress of each
 member 5 % (both: largest principal stress on the loaded teeth's tension-side fillets, ``|z| <= 0.45 b``).
@@ -14,73 +14,19 @@ The reference figure is CalculiX's converged estimate: where a position's last t
 band by the same ratio (1.5) and converge in the asymptotic range (monotone, shrinking steps, observed order in
 [0.5, 4]), the Richardson extrapolation with the observed order, its uncertainty Roache's grid convergence index
 (GCI, safety 1.25); elsewhere the finest rung (:func:`converged_estimate`).
-A file that does not record a quantity (the bore-20 variant was frozen before the root stress and the
-flank peak were read) is not compared in it. Where the figures we had when a reference was frozen
-(``ours_at_freeze``) are outside a bound, that check is a strict xfail naming the numbers, not a looser
-bound. Our compliance of each file's case (default fidelity) is computed once per file.
 
-``fzg_c14_calculix_whole.json``: FZG C14 with its own bores (pinion 40, gear 60 mm) at 200 N m, at pinion roll
-0 deg (the pitch point, single contact), -9 deg (double contact) and -4.5 deg (single contact just after the
-loaded transition near the inner point of single contact B: rigid B at -6.25 deg, loaded single contact from
-about -4.9 deg; the gear's highest point of single contact, where its root stress peaks). Contact band 150 um
-(0.75 of the nominal Hertz half-width), the tension-side fillets of the loaded teeth 0.675 mm (0.15 module);
-at 0 deg the ladder 225 / 150 / 100 um band with 1.0 / 0.675 / 0.45 mm fillets, 0 deg frozen at its finest;
--9 and -4.5 deg refined to 100 um / 0.45 mm by ``--merge`` (``ltca.verify.whole_merge``; their ladders under
-``ladders``). The flank peak is like with like at these positions: neither solver has edge contact there
-(CalculiX's ``max_pressure`` over all slices equals its inner-slice ``flank_pressure``, its third pair carries
-nothing; ours has no tip edge or form circle loaded), both peaks are the Hertzian contact of the same flank point
-(``flank_at``). At 0 deg CalculiX 1722 / 1506 / 1434 MPa over the ladder, Richardson 1398 (order 2.7), ours 1387;
-local Hertz with our largest slice line load 1370. At -4.5 deg CalculiX 1612 / 1507 MPa at 150 / 100 um (122 k /
-166 k nodes, ccx 648 / 1837 s; TE 117.68 / 117.47 arcsec, -0.18 %), at pinion tooth 0, r 35.68 mm, z +5.5 mm (ours
-r 35.67 mm, z +2.5 mm), ours 1442 MPa (-4.3 %): within 5 %, though the last step still moves -6.5 % (with the 0 deg
-order about 1455 converged); local Hertz 1430 MPa (our largest slice line load 434 N/mm, R 7.65 mm, b 193 um),
-GEARpie's rigid sharing (single contact there) 1410 MPa. The flank peak at -9 deg (double contact), where CalculiX's
-finest rung is not converged: 1465 / 1266 / 1207 MPa at 150 / 100 / 67 um (-13.6 / -4.7 %; 126 k / 176 k / 271 k
-nodes, ccx 1158 / 1114 / 2883 s), observed order 2.97 (2.69 at 0 deg), Richardson 1181 MPa, GCI 2.6 %: ours 1128
-MPa is -4.5 % from the estimate (-6.5 % from the 67 um rung; a strict xfail against the finest rung until the
-estimate replaced it); at 0 deg -0.7 % (-3.3 % from the 100 um rung). Its other figures:
-TE 76.48 / 76.23 arcsec, -0.33 %; shares 0.526 / 0.474 at 100 um), at pinion tooth 0, r 34.93 mm, z +3.5 mm near
-the pinion's root (ours r 34.91 mm, z +4.5 mm), fitted half-width 168 um against a Hertz half-width of 130 um (0.78
-band element); ours 1128 MPa (-10.9 %). Local Hertz there 1126 MPa (our share 0.527, largest slice line load 229
-N/mm, R 6.52 mm); GEARpie's rigid sharing (0.5 each, not the elastic 0.527: a rigid pair shares by contact length)
-1081 MPa.
-The pinion's root stress was a strict xfail at every position when frozen (ours then 253.1 / 168.9 / 244.5 MPa at 0
-/ -9 / -4.5 deg, +9.4 / +5.4 / +7.8 %): not converged (ours at 0 deg coarse / default / fine 219.9 / 253.1 / 242.0
-MPa) because 1.35 mm elements on a 2 mm fillet were read 0.05 mm inside (chord sagitta 0.11 mm) with the stress of
-the one element there, at points 0.42 mm apart along the fillet. Since issue 18 (``ROOT_REMEASURED``) the read
-fillets are meshed at 0.4 of their smallest radius of curvature, the stress is averaged at the nodes as CalculiX's
-and read 0.1 mm apart along the fillet (:mod:`fem.fillet`): ours at the default fidelity 234.2 / 159.5 / 224.1 MPa
-(pinion, +1.2 / +0.9 / +1.2 % against CalculiX at 100 um), 219.6 / 151.0 / 242.3 MPa (gear, -0.0 / -0.5 / -0.1 %),
-converged over coarse / default / fine within 2 % at each position (tests/test_commands.py); the root stresses'
-xfails at freeze no longer apply and are checked at 5 % like the rest. CalculiX's root stress moves -1.3 / -2.4 %
-(pinion) and -2.3 / -0.6 % (gear) at -9 / -4.5 deg over 150 -> 100 um, its TE -0.33 / -0.18 %; ours then TE -0.67 /
--0.33 %, shares within 0.002.
+A file that does not record a quantity is not compared in it; a quantity the file names under ``unconverged``
+(CalculiX's own ladder moves it by more than 5 %) is skipped with its numbers. Where our figures stored with a
+reference (``ours_at_freeze``) are outside a bound, that check is a strict xfail naming the numbers, not a
+looser bound; the root stresses (:data:`ROOT_REMEASURED`) are always checked. Our model of each file's case
+(default fidelity) is built once per file, or taken from the session fixture of the same case.
 
-``helical_c14_calculix_whole.json``: helical C14 (``cases/helical_c14.toml``: C14's transverse geometry, beta 20 deg,
-b 40 mm, bores 40/60 mm) at 200 N m, at pinion roll 0 deg (mid-cycle: three pairs, our shares 0.16/0.67/0.17, our TE
-minimum) and +6 deg (where the load passes from three pairs to two: tooth 1 leaves, ours 0.001; our TE maximum,
-stiffness minimum and pinion root stress maximum over the cycle; ours has three pairs from -5.25 to +5.25 deg).
-``--coarse-body`` (flanks with a contact line 0.45, other teeth 0.75, body 1.6, fillets 0.225 module = 0.95 mm, band
-growth x 1.5; the default body was 300 k nodes at a 150 um band; on FZG C14 at 224 um the coarse body moved TE
-+0.09 % and stiffness -0.1 %). 0 deg frozen at a 100 um band (0.85 of the Hertz half-width 118 um), 0.63 mm
-fillets, 219 k nodes, ccx 1331 s; +6 deg at 150 um, 0.95 mm, 148 k nodes, 678 s. Ladder at 0 deg 225 / 150 / 100
-um, continued to 67 um by ``--merge`` (0.42 mm fillets, 332 k nodes, ccx 1728 s on 2 threads): TE 35.807 / 35.293 /
-35.079 / 34.987 arcsec (-1.44 / -0.60 / -0.26 %: converged to 0.5 % over the last step; until the 67 um rung a
-strict xfail of ``test_reference_te_is_converged``), Richardson over the last three 34.917 arcsec (order 2.1, GCI
-0.25 %), the figure ours is compared with; stiffness 16.78 / 17.02 / 17.13 / 17.17 (estimate 17.21), root stress
-pinion 69.4 / 71.3 / 74.7 / 73.5 MPa, gear 72.3 / 69.2 / 70.4 / 70.3 MPa (not monotone: the finest rung; within 2 %
-over the last step). +6 deg refined to 100 um by ``--merge`` (0.63 mm fillets, 206 k nodes, ccx 493 s on 2 threads):
-TE 35.760 / 35.589 arcsec (-0.48 %), stiffness 16.80 / 16.88, root stress pinion 74.4 / 75.2, gear 68.0 / 68.2 MPa;
-ours TE +0.18 %, stiffness -0.18 %, root stress pinion +1.5 %, gear -2.8 %. The flank peak is not compared
-(``unconverged``: 6174 / 4964 / 41934 MPa over the ladder, 14865 MPa at +6
-deg): CalculiX's inner face slices hold the tip-edge contact at the ends of the helical contact lines inside the
-face (at 150 um nodal 7 GPa at pinion r 34.2 mm under the gear's tip edge, 5.4 GPa at the pinion tip r 41.2 mm),
-which ours leaves out as edge contact (ours 934 / 933 MPa). Ours when frozen: TE -1.06 / -0.29 %, stiffness +1.08 /
-+0.29 %, shares within 0.016 / 0.003, root stress pinion -4.3 / +2.6 %, gear -2.6 / -2.4 % at 0 / +6 deg; at the
-67 um merge (today's bodies) against the converged estimate at 0 deg: TE 34.707 arcsec -0.60 %, stiffness +0.60 %,
-root stress pinion 71.5 MPa -2.6 %, gear 68.5 MPa -2.5 %, shares within 0.016. Our compliance of this case takes
-21-88 s (52 s at freeze), shared with the session's ``helical_lm``; its comparisons are in the fast suite
-(``SLOW_COMPLIANCE_S``).
+The files: ``fzg_c14_calculix_whole.json``, FZG C14 with its own bores (pinion 40, gear 60 mm) at 200 N m, at
+pinion roll 0 deg (the pitch point, single contact), -9 deg (double contact) and -4.5 deg (single contact near
+the inner point of single contact, where the gear's root stress peaks); its variant with a 20 mm pinion bore;
+``helical_c14_calculix_whole.json``, ``cases/helical_c14.toml`` at 200 N m, at roll 0 deg (three pairs) and +6 deg
+(three pairs to two). The helical flank peak is not compared (``unconverged``): CalculiX's inner face slices hold
+the tip-edge contact at the ends of the helical contact lines, which ours leaves out as edge contact.
 """
 from __future__ import annotations
 
@@ -97,14 +43,12 @@ REFERENCES = sorted((Path(__file__).resolve().parent / "reference").glob("*_calc
 BOUNDS = {"te": 0.02, "stiffness": 0.02, "share": 0.03, "flank_pressure": 0.05, "root_pinion": 0.05,
           "root_gear": 0.05}
 QUANTITIES = tuple(BOUNDS)
-#: quantities whose read-out changed after the references were frozen (issue 18: the root stress); their
-#: ``ours_at_freeze`` no longer marks an xfail
+#: quantities always held to their bound: the ``ours_at_freeze`` stored with the references predates our
+#: root-stress read-out (:mod:`fem.fillet`), so it marks no xfail for them
 ROOT_REMEASURED = ("root_pinion", "root_gear")
 #: a file whose case costs more than this (s) for our compliance at the default fidelity (``ours_compliance_wall_s``,
-#: measured when it was frozen) has its comparisons marked slow, for the fast suite's budget: FZG C14 (15 s) and
-#: helical C14 (52 s when frozen, 21 s on a quiet machine; shared with the session's ``helical_lm``) are fast. The
-#: helical comparisons were slow while the session's models kept their factors (the suite passed 24 GiB with them;
-#: :meth:`ltca.cylindrical.loaded_model.LoadedModel.without_solver` frees them now)
+#: stored in the file) has its comparisons marked slow, for the fast suite's budget: FZG C14 and helical C14 are
+#: below it (helical C14's model is the session's ``helical_lm``)
 SLOW_COMPLIANCE_S = 120.0
 #: the CalculiX TE of a frozen reference changes by less than this over its ladder's last refinement
 TE_CONVERGED = 0.005

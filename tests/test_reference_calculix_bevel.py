@@ -1,30 +1,17 @@
-"""Our bevel LTCA against the frozen CalculiX reference of the spiral bevel pair (issue 13), without ccx at test time.
+"""Our bevel LTCA against the frozen CalculiX reference of the spiral bevel pair, without ccx at test time.
 
 ``tests/reference/spiral_bevel_calculix*.json`` are computed by ``ltca validate --reference calculix
 --case cases/spiral_bevel_cao2008.toml [--torque NM] --threads 1 --freeze FILE`` at the middle torque, 175 N m
 (command, CalculiX version, date, mesh sizes, deck hashes and the contact-zone refinement stored in each): whole
 members built apart from our body (gmsh OCC solids, every tooth), pinion bore on a rigid body under the torque,
-gear back face fixed, penalty contact, both members held at the case's [mounting].  Bounds (issue 13): loaded TE
+gear back face fixed, penalty contact, both members held at the case's [mounting].  Bounds: loaded TE
 (loaded minus unloaded, arcsec of the gear) 3 %, torque share per pair 0.03, interior peak flank pressure 5 %.
 
-Frozen 2026-11-27 (``--band 133.333 --refine 2 --level 1 --threads 2``): at phi1 = 0 (two pairs, shares
-0.258/0.742) the contact zone 133 / 89 / 59 um, 104 / 123 / 152 k nodes, 880 / 1425 / 2094 s: TE 112.998 / 113.051 /
-113.102 arcsec, interior peak 1528 / 1566 / 1561 MPa (converged: -0.4 % over the last step; the steps change sign,
-so no Richardson estimate, the finest rung is the reference), nodal maxima 3.9-5.0 GPa at the pinion's top edge
-(outside the interior), torque balance 1.000; at phi1 = 0.4 cycle (89 um, 400 k dofs, 1042 s) TE 99.60 arcsec,
-shares 0.492/0.508, interior peak 1602 MPa. Ours (default fidelity, the bodies' 10 tooth rows graded at 1.5): TE
--0.99 / -1.45 %, shares within 0.003 / 0.006, interior peak 1613 / 1624 MPa, +3.3 / +1.4 % (``recompared`` in the
-file: CalculiX was frozen while ours still had 7 rows at 2.2, which read 1644 / 1628 MPa, +5.3 / +1.7 %, and TE
--1.45 / -1.93 %; ``python3 -m ltca.verify.bevel_calculix FILE NOTE`` re-evaluates ours on the frozen rows). Our own
-convergence at phi1 = 0 (grid 15 x 25, 20 rows, 9 across the tooth): 1597 MPa and 112.97 arcsec, 2.3 % above and
-0.1 % below CalculiX's finest.
-
-History: before the deck fix (pinion band slave everywhere) the nodal maximum was 297 GPa at 200 um and the TE
-98.0/108.6/86.7 arcsec at 450/300/200 um (:mod:`ltca.verify.bevel_ccx` since: the gear's tip-corner pair, the top-
-edge lines refined); the read-out once took a single nodal spike for the peak (133 um, pair -1: 1924 MPa,
-neighbours 1309/1095/968), now passed over (:mod:`ltca.verify.bevel_ccx_read`). No single-pair position at 175 N m:
-ours' largest pair share over a cycle (41 positions) is 0.752 (phi1 -0.05 cycle); single-pair contact exists up to
-about 45 N m only (largest share 1.000 at 20 and 35 N m, 0.994 at 50, 0.920 at 70, 0.845 at 100, 0.797 at 130 N m).
+Positions: phi1 = 0 (two pairs; the contact zone refined twice, 133 / 89 / 59 um, and the interior peak compared
+with CalculiX's converged estimate where the ladder allows one, else with its finest rung) and phi1 = 0.4 cycle.
+``recompared`` in a file holds our figures on the current bodies; ``python3 -m ltca.verify.bevel_calculix FILE
+NOTE`` re-evaluates ours on the frozen rows. At 175 N m no position of the cycle has a single pair in contact
+(our largest pair share is about 0.75), so the share check always compares two pairs.
 """
 from __future__ import annotations
 
@@ -90,7 +77,7 @@ def converged_pressure(name: str, index: int) -> float:
 
 def _known_out(name: str) -> dict:
     """(position index, quantity) -> the measured disagreement, for the checks the frozen reference records as
-    outside the issue's bounds (``rows[i]["ok"]`` false): they stay strict xfails naming the numbers, not
+    outside :data:`BOUNDS` (``rows[i]["ok"]`` false): they stay strict xfails naming the numbers, not
     loosened bounds, until the LTCA (or the reference) changes."""
     out = {}
     for i, r in enumerate(_rec(name)["rows"]):

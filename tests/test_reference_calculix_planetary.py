@@ -1,4 +1,4 @@
-"""Issue 15's independent check: our planetary LTCA against a frozen whole-gear CalculiX reference, no ccx at test time.
+"""Our planetary LTCA against a frozen whole-gear CalculiX reference, no ccx at test time.
 
 ``tests/reference/eccentric_planetary_calculix.json`` was computed by ``ltca validate --reference calculix-whole
 --case cases/eccentric_planetary_satellite.toml --torque ... --positions ... --freeze FILE`` (the command, CalculiX
@@ -7,26 +7,9 @@ it): both gears whole with every tooth (:mod:`fem.solids.full_gear`, the wheel i
 outer diameter, the satellite bore on a rigid body turning about the satellite axis, penalty contact on every
 tooth that could close (:mod:`ltca.verify.planetary_whole`), each wheel band split at its tip corner (the corner
 zone a slave against the satellite's flank and fillet). The torque is chosen so that at least 5 pairs carry
-load (at the rated 264 N m our model loads 2-3). Bounds (issue 15): loaded TE 3 %, every pair's share 0.03. A
+load (at the rated 264 N m our model loads 2-3). Bounds: loaded TE 3 %, every pair's share 0.03. A
 check the frozen reference records outside its bound stays a strict xfail naming the numbers, not a looser bound.
-
-Issue 15's share gap (2026-11-23), satellite teeth -8/-7/-6/-5/-4 at phi -1.8 deg, 3000 N m:
-
-* before: ours 0.051/0.344/0.360/0.198/0.047, TE 54.49 um; CalculiX (tooth -6 a satellite-slave pair that took
-  up to 33 GPa at 6.5 um overclosure on the wheel's tip land, lever 65.2 mm about the satellite axis instead of
-  r_b1 70.48 mm) 0.094/0.309/0.377/0.179/0.042, TE 53.02 um: largest difference 0.043 (a strict xfail);
-* ours: contact cells at most 0.04 module across the line (they were b/3 = 0.83 mm, blind to the wheel's
-  tip-corner gap kink on tooth -8: 41.0 um seen, 28.5 um exact): 0.0995/0.3228/0.3426/0.1851/0.0500, TE 52.50 um;
-* CalculiX with the split bands (400 um band: every pair's lever 70.1-70.6 mm, overclosure at most 0.92 um,
-  nodal pressure at most 4.75 GPa), refrozen:
-  0.0986/0.3224/0.3471/0.1880/0.0439, TE 53.37 um (600 um band: 53.21 um, shares within 0.003).
-  Now: TE -1.62 %, largest share difference 0.0061 (tooth -4).
-* with the fillet-resolved bodies of issue 18 (merged the same day): ours 0.1020/0.3220/0.3402/0.1848/0.0511,
-  TE 53.19 um: TE -0.34 %, largest share difference 0.0072 (tooth -4).
-
-Mutation check (2026-11-23): our Young's modulus / 1.05 moves our TE to 54.47 um (+2.1 % off CalculiX: the TE
-test still passes), x 1.05 to 50.62 um (-5.2 %: it fails); the shares move by at most 0.005 either way (the
-unloaded gaps of the outer pairs do not scale with E, so the TE moves 3.7 %, not 5 %).
+The TE bound fails when our Young's modulus is raised by 5 % (our TE then 5.2 % off CalculiX's).
 """
 from __future__ import annotations
 
@@ -130,13 +113,10 @@ def test_fidelity_caps_the_contact_cell_across_the_line():
 
 
 def test_ours_resolves_the_wheel_tip_corner_of_pair_minus_8():
-    """Issue 15's share gap, measured: satellite tooth -8 touches at the wheel's tip corner (exact unloaded gap
-    28.5 um beyond first contact, at r1 = 72.36 mm). Cells of half_width / 3 = 0.83 mm (b = 2.50 mm, nearly
-    conformal) sampled that gap kink at 41.0 um and gave the pair a share of 0.051 (TE 54.49 um); cells of at
-    most 0.04 module give 0.0995 (0.0995 to 0.1006 down to 0.0133 module) and TE 52.50 um. The uncapped
-    lattice is kept here as the measurement of the cause. (Numbers on the bodies with fillet-resolved meshes of
-    issue 18, which made the satellite body a little softer: capped 0.1020 and 53.19 um, uncapped 0.0547 and
-    55.15 um.)"""
+    """Satellite tooth -8 touches at the wheel's tip corner (exact unloaded gap 28.5 um beyond first contact, at
+    r1 = 72.36 mm): cells of at most 0.04 module (:meth:`ltca.cylindrical.loaded_model.Fidelity.cell_size`) resolve
+    that gap kink; the uncapped cells of half_width / 3 = 0.83 mm (b = 2.50 mm, nearly conformal) miss it and
+    about halve the pair's share. Both lattices are checked, 5 % on the share and 1 % on the TE."""
     import dataclasses
     from ltca.verify.planetary_whole import solve_ours
     sm, lm = _model()
@@ -198,7 +178,7 @@ def test_calculix_internal_pairs_split_the_wheel_band_at_its_tip_corner(tmp_path
 
 
 def test_calculix_has_at_least_five_pairs_in_contact():
-    """The issue's demand on the check itself: CalculiX at one position with >= 5 pairs carrying load."""
+    """The check is multi-pair: CalculiX at one position with >= 5 pairs carrying load."""
     assert max(r["ccx"]["loaded_pairs"] for r in _rec()["rows"]) >= 5
 
 
@@ -229,10 +209,7 @@ def _cases():
 
 @pytest.mark.parametrize("index,quantity", _cases())
 def test_ours_against_frozen_calculix(index, quantity):
-    """Loaded TE within 3 % and every pair's load share within 0.03 of the frozen CalculiX values.
-
-    At -1.8 deg (2026-11-23): TE 53.19 against 53.37 um (-0.34 %); largest share difference 0.0072 (tooth -4:
-    0.0511 against 0.0439), no longer the strict xfail of 0.043 (tooth -8: 0.051 against 0.094; module doc)."""
+    """Loaded TE within 3 % and every pair's load share within 0.03 of the frozen CalculiX values."""
     ref = _rec()["rows"][index]
     o, c = _ours(ref["phi_deg"]), ref["ccx"]
     if quantity == "te":

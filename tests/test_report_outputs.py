@@ -1,4 +1,4 @@
-"""Issue 16 (what was left) and the report side of issue 12: ``report.html`` (Jinja2, self-contained, opened in a
+"""The report side of a run: ``report.html`` (Jinja2, self-contained, opened in a
 real headless Chromium), the ParaView series ``paraview.pvd`` (read back with meshio; the flank pressure at the
 pitch position equals the solver's peak), the bearing pattern against diameter and its striping (the flagship
 defaults are smooth; an under-sampled run is caught), the warnings of unconverged positions.
@@ -62,7 +62,7 @@ def test_report_numbers(flagship):
     assert p0["ours"] == pytest.approx(1378.0, rel=0.02) and abs(p0["deviation_pct"]) < 3.0
     sp, sg = rows["pinion root stress, max over the cycle"], rows["gear root stress, max over the cycle"]
     assert sp["reference"] == pytest.approx(288.1, rel=0.01) and sg["reference"] == pytest.approx(275.1, rel=0.01)
-    # fillet-resolved root stress (issue 18)
+    # fillet-resolved root stress
     assert sp["ours"] == pytest.approx(255.2, rel=0.03) and sg["ours"] == pytest.approx(242.3, rel=0.03)
 
 

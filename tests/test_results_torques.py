@@ -1,4 +1,4 @@
-"""Issue 16: several torques first-class (results.nc, summary.json, console, every plot), torque_nm spelling and
+"""Several torques first-class (results.nc, summary.json, console, every plot), torque_nm spelling and
 --torque, TE in um and harmonics, the transition-zone sampling, and the case-key reference."""
 from __future__ import annotations
 
@@ -243,8 +243,8 @@ def test_help_texts():
 
 @pytest.mark.slow
 def test_default_settings_three_torques_under_5_mb(tmp_path):
-    """The flagship case at its defaults (default fidelity, 30 positions) and three torques: results.nc < 5 MB
-    (27 MB before issue 16), no warnings."""
+    """The flagship case at its defaults (default fidelity, 30 positions) and three torques: results.nc < 5 MB,
+    no warnings."""
     from ltca.cylindrical.run import run_case
     with warnings.catch_warnings():
         warnings.simplefilter("error")

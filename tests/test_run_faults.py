@@ -1,4 +1,4 @@
-"""Fault tests of ``ltca run`` (issue 12): SIGKILL then --resume (identical results, only the missing positions
+"""Fault tests of ``ltca run``: SIGKILL then --resume (identical results, only the missing positions
 computed), a second run on a locked --out, a read-only or file --out refused before any FE work, a full disk
 (small tmpfs; skipped where mounting is not allowed) leaving no truncated file under a final name."""
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Seed 004: the satellite cut by (a) a hob in three passes, (b) a disk cutter, (c) a special hob; its rating.
+"""Kapitonov et al.: the satellite cut by (a) a hob in three passes, (b) a disk cutter, (c) a special hob; its rating.
 
 Every test guards a number against an independent hand computation (formula written out) or a stated value;
 a 5 % move of that number fails it.

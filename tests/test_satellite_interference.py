@@ -1,11 +1,11 @@
-"""Seed 004: the central wheel at e = m, interference of the internal pair, minimum thinning, unloaded gaps.
+"""Kapitonov et al.: the central wheel at e = m, interference of the internal pair, minimum thinning, unloaded gaps.
 
 Hand numbers used below (z1 50, z2 51, m 3, alpha 20 deg, x1 -0.5, wheel x2 0, e = m):
   cos(alpha_w) = m (z2 - z1) cos(alpha) / (2 e) = cos(20 deg) / 2  ->  alpha_w = 61.976 deg
   zero backlash: x2 + k / (2 tan(alpha)) = x1 + (inv(alpha_w) - inv(alpha)) (z2 - z1) / (2 tan(alpha)) = 0.5746
   so with x2 = 0 the satellite fits for k_fit = 2 tan(alpha) 0.5746 = 0.4182, and a satellite thinned by k
   has the circumferential backlash (k - k_fit) m r_w1 / r1 on the working circle, i.e. (k - k_fit) m cos(alpha)
-  along the line of action: -1179.1 um unthinned (the flanks overlap), +512.4 um at the seed's k = 0.6.
+  along the line of action: -1179.1 um unthinned (the flanks overlap), +512.4 um at the paper's k = 0.6.
 """
 import numpy as np
 import pytest

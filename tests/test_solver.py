@@ -99,7 +99,7 @@ def test_observe_fast_path_equals_plain_full_solve_and_full_solve_still_works(be
     assert _rel(fac.solve(F, observe=O), ref) < 1e-10
 
     print(f"\n{K.shape[0]} dofs, 100 patch loads, {O.shape[0]} observed rows (median of 3): "
-          f"before (MKL default refinement) {t_old:.2f} s, after solve(F, observe) {t_new:.2f} s "
+          f"MKL's default refinement {t_old:.2f} s, solve(F, observe) {t_new:.2f} s "
           f"({t_old / t_new:.1f}x)")
     plain_solver.free_memory(everything=False)
     fac.release()

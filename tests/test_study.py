@@ -1,4 +1,4 @@
-"""Studies on Dask (issue 17): ISO 1328-1 tolerances by hand, Monte Carlo draws, bad study files, identity with a
+"""Studies on Dask: ISO 1328-1 tolerances by hand, Monte Carlo draws, bad study files, identity with a
 standalone ``ltca run``, one compliance per geometry, a killed worker, a killed client and its rerun, the README
 example. Coarse fidelity and 4 positions per cycle throughout (each test well under a minute on 2 cores)."""
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The independent whole-gear CalculiX check (issue 11): full-gear solids with every tooth, their deck,
+"""The independent whole-gear CalculiX check: full-gear solids with every tooth, their deck,
 and (slow) ours against CalculiX at one position."""
 from __future__ import annotations
 
@@ -150,7 +150,8 @@ def test_fillet_stress_reads_the_tension_fillets_as_ours(tmp_path):
 @pytest.mark.calculix
 @needs_ccx
 def test_whole_gear_calculix_pitch_point_bore20(tmp_path):
-    """FZG C14, pinion bore 20 mm, pitch point: ours within issue 11's bounds of whole-gear CalculiX."""
+    """FZG C14, pinion bore 20 mm, pitch point: ours within ``ltca.verify.whole_check.BOUNDS_WHOLE`` of whole-gear
+    CalculiX."""
     from ltca.verify.whole_check import run_whole_validation
     import json
     rc = run_whole_validation(str(CASES / "crosscheck" / "fzg_c14_bore20.toml"), [0.0], str(tmp_path), refine=0,
@@ -170,7 +171,7 @@ def test_calculix_whole_argument_errors_before_ccx(tmp_path, capsys):
 
 def test_coarse_body_and_unconverged_readouts():
     """``--coarse-body`` coarsens only away from the contact band (same band, penalty and halo); a frozen reference
-    names a read-out its ladder moves by more than 5 % (issue 18), with the numbers."""
+    names a read-out its ladder moves by more than 5 %, with the numbers."""
     from types import SimpleNamespace
 
     from ltca.verify.whole_check import unconverged
@@ -189,7 +190,7 @@ def test_coarse_body_and_unconverged_readouts():
 
 
 def test_fitted_peak_says_where():
-    """The elliptic-fit flank peak (issue 18) is found on its line and slice, with the radius of its centre: an
+    """The elliptic-fit flank peak is found on its line and slice, with the radius of its centre: an
     elliptic pressure of 1000 MPa over a half-width of 0.2 mm on the second of two lines, peaking at z 2.5 mm (a
     slice centre)."""
     from types import SimpleNamespace

@@ -1,5 +1,5 @@
 """``ltca validate --reference calculix-whole --merge FILE``: refining chosen positions of a frozen whole-gear
-reference keeps the rest of the file (issue 18), without ccx (CalculiX is replaced by a stand-in)."""
+reference keeps the rest of the file, without ccx (CalculiX is replaced by a stand-in)."""
 from __future__ import annotations
 
 import dataclasses

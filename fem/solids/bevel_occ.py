@@ -1,6 +1,6 @@
 """A whole bevel member as an OpenCASCADE solid (gmsh OCC), meshed with contact-refined quadratic tetrahedra.
 
-The independent body of the bevel CalculiX check (issue 13), built apart from our mapped compliance body
+The independent body of the bevel CalculiX check, built apart from our mapped compliance body
 (:mod:`fem.solids.bevel_body`): a different geometry kernel, topology, mesher and support.
 
 * **Teeth.** One tooth is lofted (``addThruSections``) through sections of constant cone distance L (each

@@ -1,4 +1,4 @@
-"""A full gear with every tooth, built independently of :mod:`fem.solids.gear_body` (issue 11's check).
+"""A full gear with every tooth, built independently of :mod:`fem.solids.gear_body` (the whole-gear check).
 
 The reference solid of the whole-gear CalculiX check: the transverse outline of all ``z`` teeth (the
 generated tooth outline rotated into place for each tooth) is one closed curve, the bore is a circular
@@ -8,7 +8,7 @@ conforming by ``occ.fragment``. A helical gear (``twist`` = tan(beta) / r, rad/m
 z is the one at z = 0 turned by ``twist`` z, counter-clockwise) is lofted (``occ.addThruSections``, cubic
 B-spline surfaces) through the whole outline at sections at most ``max_turn`` apart in that turn, and its bore
 cut out; no web. An internal gear (``internal``) is the ring between its toothed inner outline and the outer
-circle ``r_bore`` where the housing holds it (issue 15's central wheel); spur only.
+circle ``r_bore`` where the housing holds it (the eccentric planetary's central wheel); spur only.
 
 Nothing here is shared with the compliance body of our solver: its own construction (OCC extrusion and
 fragments, not the built-in kernel's sweep), every tooth meshed (none left out), its own size field

@@ -4,7 +4,7 @@ The body is the gear, not a sector: the teeth that can touch (and a neighbour ea
 finely, the rest of the ring coarsely, and the support is the real one (the bore on the shaft, or the
 rim of an internal gear in its housing). A body cut out of a gear (a segment with free radial cut
 faces) bends like a curved cantilever about its fixed bore, so its stiffness depends on where it is
-cut and falls as the rim gets deeper, the wrong way round (issue 11).
+cut and falls as the rim gets deeper, the wrong way round.
 
 Meshing by a twisted sweep
 --------------------------
@@ -16,7 +16,7 @@ twisted helical gear needs no lofting of transverse sections and meshes in secon
 than the face splits the sweep into axial stacks; the web's volumes outside its width are dropped.
 The 3D mesh is graded from ``h_flank`` at the fine teeth (slope 0.6) up to half the body depth far
 away, so the whole 360 deg ring costs about what a segment did. The fillets whose root stress is read
-(``fillets``) are meshed at ``h_fillet``, graded at slope 1 into the body (:mod:`fem.fillet`, issue 18).
+(``fillets``) are meshed at ``h_fillet``, graded at slope 1 into the body (:mod:`fem.fillet`).
 
 Conventions as in :mod:`fem.solids.spec`: points (n, 3) in mm, tooth ``k`` is the outline rotated by
 ``-k 2 pi / z``, 10-node tetrahedra in the meshio order, straight edges (mid-edge nodes at the edge
@@ -383,7 +383,7 @@ def _graded(surfaces: list[int], h: float, h_far: float, face_width: float, slop
 
 _SLOPE = 0.6
 #: the read fillets' sizes grow faster into the body: the root stress needs small elements within about a fillet
-#: element of the surface (issue 18), and the slope 0.6 of the flanks would fill the tooth root with them
+#: element of the surface, and the slope 0.6 of the flanks would fill the tooth root with them
 _FILLET_SLOPE = 1.0
 _OPTIONS = {"Geometry.ExtrudeSplinePoints": 5, "General.NumThreads": 1, "Mesh.MeshSizeFromPoints": 0,
             "Mesh.MeshSizeExtendFromBoundary": 0,

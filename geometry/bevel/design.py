@@ -1,4 +1,4 @@
-"""Three-control-point design of the pinion (seed 000, Cao et al. 2008) and the blank-offset redesign.
+"""Three-control-point design of the pinion (Cao et al. 2008) and the blank-offset redesign.
 
 Control points: M0 (phi1 = 0, the mean contact point of :mod:`geometry.bevel.synthesis`) and M1, M2 at the
 transfer points phi1 = -+pi/z1, one mesh cycle apart.  The parabola TE = (m21/2) phi1^2 puts the gear at
@@ -10,13 +10,13 @@ generated surfaces rather than on the head-cutter surfaces:
   roll and blade angle so that eta2, m21 and the ellipse axis hold exactly at M0 (C enters the second
   order through the roll acceleration, D does not);
 * outer problem: Newton on (C, D) so that the continuous-tangency TCA of the generated pair passes
-  through M1 and M2 with the parabola's gear angles (two equations, two unknowns; seed 000 Eq. 8 fits C, D
+  through M1 and M2 with the parabola's gear angles (two equations, two unknowns; Cao et al. 2008 Eq. 8 fits C, D
   through the same two points).
 
 The path stays straight to second order through M0 (its tangent is eta2); its deviation from the straight
 line over the cycle is measured, not imposed (:func:`cycle_metrics`).
 
-Blank-offset redesign (seed 000 sec. 3): Em1 fixed (e.g. 0 mm); the local synthesis now takes point
+Blank-offset redesign (Cao et al. 2008 sec. 3): Em1 fixed (e.g. 0 mm); the local synthesis now takes point
 radius, XG1 and C as its unknowns (eta2 and m21 still hold at M0), and the outer Newton runs on (ellipse
 axis used at M0, D) so that TE(M1) = TE(M2) = -te_magnitude again, starting from the first design: the
 TE magnitude is kept, the ellipse axis at M0 moves (reported), the path gains a small curvature (reported),
@@ -50,7 +50,7 @@ def path_line(L: np.ndarray, Rn: np.ndarray, blank: BevelBlank) -> tuple[float, 
     Returns
     -------
     angle_deg : float
-        The line's direction from the gear's root-cone line, positive towards the top (seed 000's eta2).
+        The line's direction from the gear's root-cone line, positive towards the top (eta2 of Cao et al. 2008).
     straightness_mm : float
         Largest distance of the points from the line.
     """
@@ -167,12 +167,12 @@ def control_point_design(blank: BevelBlank, gear: MemberCut, pinion_side: str, t
 def synthesize_pinion(blank: BevelBlank, gear: MemberCut, targets: dict[str, FlankTarget],
                       blank_offset: float | None = None) -> tuple[MemberCut, dict]:
     """Both pinion flanks by the control-point design; with ``blank_offset`` a number, first the free
-    design, then the redesign at that Em1 started from it (seed 000 sec. 3).
+    design, then the redesign at that Em1 started from it (Cao et al. 2008 sec. 3).
 
     Parameters
     ----------
     targets : {"concave": FlankTarget, "convex": FlankTarget}
-        Pinion concave = working flank of seed 000 (drives the gear convex), convex = coast.
+        Pinion concave = working flank of Cao et al. 2008 (drives the gear convex), convex = coast.
 
     Returns
     -------

@@ -13,7 +13,7 @@ Theory*, 2nd ed. 2004, ch. 20-21, and Litvin NASA CR-4342, 1990, with our own si
   ``O_w = Em y_m + XB z_m + XG k`` (blank offset, sliding base, machine centre to back).  The work body lies on
   the +z_m side of the tip plane (the blade tips generate its root).
 * Roll: the work turns by ``phi(psi) = m_a (psi - C psi**2 - D psi**3)`` about +k when the cradle turns
-  by psi about +z_m (seed 000, Eq. 8).  Pure rolling of the pitch cone (angle g) on the generating crown
+  by psi about +z_m (Cao et al. 2008, Eq. 8).  Pure rolling of the pitch cone (angle g) on the generating crown
   gear needs ``m_a = cos(g - gm) / sin(g)`` (the relative angular velocity m_a k - z_m lies along the
   pitch generatrix), the Gleason ratio of roll cos(dedendum angle)/sin(pitch angle).
 """
@@ -158,7 +158,7 @@ def work_to_machine(ms: MachineSettings, phi: float) -> np.ndarray:
 
 
 def roll(ms: MachineSettings, psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Work roll angle phi(psi) and its derivative d(phi)/d(psi) (modified roll, seed 000 Eq. 8)."""
+    """Work roll angle phi(psi) and its derivative d(phi)/d(psi) (modified roll, Cao et al. 2008 Eq. 8)."""
     c, d, m = ms.modified_roll_c, ms.modified_roll_d, ms.ratio_of_roll
     return m * (psi - c * psi ** 2 - d * psi ** 3), m * (1.0 - 2 * c * psi - 3 * d * psi ** 2)
 
@@ -226,7 +226,7 @@ def pinion_settings(blank: BevelBlank, mismatch: float = 2.0, edge_radius: float
     The pinion tooth (not its slot) is centred on the mean pitch point, as it fills the gear slot there in
     mesh.  The blade radius at the mean pitch point is the mating gear blade's radius there plus (concave)
     or minus (convex) ``mismatch`` (mm), which localises the bearing lengthwise; otherwise as
-    :func:`gear_settings`.  Local synthesis (seed 000) replaces these settings.
+    :func:`gear_settings`.  Local synthesis (Cao et al. 2008) replaces these settings.
     """
     d, p = blank.data, blank.pinion
     if not (0.0 <= mismatch < 0.5 * d.cutter_radius):

@@ -41,7 +41,7 @@ __all__ = ["FlankTarget", "MeanContact", "second_order", "generated_curvature", 
 
 @dataclass(frozen=True)
 class FlankTarget:
-    """Design targets of one flank pair (seed 000).
+    """Design targets of one flank pair (Cao et al. 2008).
 
     Parameters
     ----------
@@ -74,7 +74,7 @@ class FlankTarget:
 
 def te_curvature(te_magnitude: float, z1: int) -> float:
     """m21 = d^2 TE / d phi1^2 (rad/rad^2, driven sense, < 0) of the parabola of magnitude
-    ``te_magnitude`` (rad) at phi1 = +-pi/z1: TE = (m21 / 2) phi1^2 (seed 000, Eq. 2)."""
+    ``te_magnitude`` (rad) at phi1 = +-pi/z1: TE = (m21 / 2) phi1^2 (Cao et al. 2008, Eq. 2)."""
     return -2.0 * te_magnitude / (np.pi / z1) ** 2
 
 
@@ -265,7 +265,7 @@ def local_synthesis(blank: BevelBlank, gear: MemberCut, pinion_side: str, target
     target : FlankTarget
     blank_offset : float or None
         None: the unknowns are the cutter point radius, XG1 and Em1 (C as given).  A number (mm): Em1 is
-        fixed (blank-offset redesign, seed 000 sec. 3.1) and the unknowns are the point radius, XG1 and the
+        fixed (blank-offset redesign, Cao et al. 2008 sec. 3.1) and the unknowns are the point radius, XG1 and the
         modified-roll coefficient C (``modified_roll[0]`` is then only the start).  Either way the whole
         pinion curvature tensor K1 is met (eta2, m21 and the ellipse axis), and the sliding base keeps the
         blade tip plane through the pinion apex on the root line (XB1 = -XG1 sin gamma_m1): a shift along

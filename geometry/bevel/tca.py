@@ -11,7 +11,7 @@ Continuous-tangency TCA (Litvin & Fuentes 2004, sec. 9.4 and 20.7): for each pin
 r1_h = r2_h, n1_h = -n2_h, f1 = 0, f2 = 0 for the seven unknowns (u1, theta1, psi1, u2, theta2, psi2, phi2)
 (eight equations of rank seven; Gauss-Newton with a least-squares step, which also copes with the
 rank-deficient line contact of conjugate surfaces).  Transmission error, in the driven sense (negative = gear lagging),
-TE = s (-(phi2 - phi2_0) - (z1/z2)(phi1 - phi1_0))  (seed 000, Eq. 1), s = :func:`drive_sign`: the pinion
+TE = s (-(phi2 - phi2_0) - (z1/z2)(phi1 - phi1_0))  (Cao et al. 2008, Eq. 1), s = :func:`drive_sign`: the pinion
 drives the gear away from the pinion flank, so the driving rotation of the pinion is -s phi1.
 Contact ellipse: gap = x^T (K1 + K2) x / 2 with K_i the curvature tensors (dn = K dr, convex > 0),
 semi-axes sqrt(2 delta / lambda) for the elastic approach delta (Litvin & Fuentes 2004, sec. 9.3).

@@ -1,4 +1,4 @@
-"""The eccentric planetary satellite of seed 004 (Kapitonov et al., Vestnik BRU 2014 No. 4(45)).
+"""The eccentric planetary satellite of Kapitonov et al. (Vestnik BRU 2014 No. 4(45)).
 
 Modules: :mod:`.tools` (design and the three tools), :mod:`.forming` (cutting by method), :mod:`.compare`
 (deviations from the special hob, plot), :mod:`.wheel` (central wheel by a shaper, choice of z2 and x2),

@@ -1,4 +1,4 @@
-"""Comparison of the satellite forming methods of seed 004 against the special hob (c), and its plot.
+"""Comparison of the satellite forming methods of Kapitonov et al. 2014 against the special hob (c), and its plot.
 
 Profile deviation of a method from (c): at points of the (c) right-half outline (fillet, involute, tip
 corner), the distance along the (c) outline normal to the other method's outline, in um, positive where

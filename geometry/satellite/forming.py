@@ -1,4 +1,5 @@
-"""Cutting the satellite by the three methods of seed 004; each gives a :class:`~geometry.profile.ToothProfile`.
+"""Cutting the satellite by the three methods of Kapitonov et al. (2014); each gives a
+:class:`~geometry.profile.ToothProfile`.
 
 * (c) ``special_hob``: one rack envelope (:func:`geometry.involute.generate_by_rack`) with the thickened
   rack, i.e. the ISO 21771 thickness allowance ``A = k m`` (:class:`SpecialHob`).
@@ -41,7 +42,7 @@ class FormedTooth:
     profile : ToothProfile (for ``disk_cutter`` the flanks are translated involutes: use ``profile.xy``;
         the analytic involute methods of the record are exact only when ``involute_exact``).
     method : str.   tool : the tool record.   passes : int, cutting passes (cycles on the machine).
-    s_ref : tooth thickness on the reference circle measured on the outline, mm.   s_eq3 : seed Eq. 3, mm.
+    s_ref : tooth thickness on the reference circle measured on the outline, mm.   s_eq3 : Kapitonov et al. Eq. 3, mm.
     tip_land : arc thickness on the tip circle, mm (0 when pointed).   r_tip : outermost radius, mm.
     pointed : the flanks meet below the blank's tip circle.   nearly_pointed : tip land < 0.2 m.
     r_root : innermost radius, mm.   dedendum : r_ref - r_root, mm.
@@ -204,7 +205,7 @@ def form_disk_cutter(design: SatelliteDesign, tool: DiskCutter = DiskCutter()) -
 
 
 def form_satellite(design: SatelliteDesign, method: str, tool=None) -> FormedTooth:
-    """Cut the satellite by ``method`` (one of :data:`METHODS`) with ``tool`` (None: the seed's tool)."""
+    """Cut the satellite by ``method`` (one of :data:`METHODS`) with ``tool`` (None: the paper's tool)."""
     if method not in METHODS:
         raise ValueError(f"method = {method!r}: allowed one of {METHODS}")
     if method == "hob":

@@ -132,7 +132,7 @@ def analyse_interference(mesh: EccentricMesh, n_positions: int = 48, tol_um: flo
 @dataclass(frozen=True)
 class ThinningResult:
     """Smallest Eq. 3 thinning coefficient k that removes all interference (NaN: none below ``k_max``),
-    the seed's k and the margins (um along the line of action) at both; ``evaluations`` of the margin."""
+    the paper's k and the margins (um along the line of action) at both; ``evaluations`` of the margin."""
 
     k_min: float
     k_seed: float

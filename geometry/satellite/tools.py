@@ -1,6 +1,6 @@
-"""The eccentric planetary satellite of seed 004 and the three tools that cut it (inputs only).
+"""The eccentric planetary satellite of Kapitonov et al. 2014 and the three tools that cut it (inputs only).
 
-Seed 004 (Kapitonov, Pashkevich, Nepsha, Khatetovsky, Vestnik of the Belarusian-Russian University 2014
+Kapitonov, Pashkevich, Nepsha, Khatetovsky (Vestnik of the Belarusian-Russian University 2014
 No. 4(45)): satellite z = 50, m = 3 mm, alpha = 20 deg, profile shift x = -0.5 (1.5 mm radial), steel 40Kh,
 teeth thinned so that (Eq. 3)
 
@@ -84,7 +84,7 @@ class SatelliteDesign:
 
     @property
     def eq3_thickness(self) -> float:
-        """Seed Eq. 3: s = pi m/2 + 2 x m tan(alpha) - k m, mm."""
+        """Kapitonov et al. Eq. 3: s = pi m/2 + 2 x m tan(alpha) - k m, mm."""
         return np.pi * self.m / 2 + 2 * self.x * self.m * np.tan(self.alpha) - self.thinning * self.m
 
     def rack(self) -> RackCutter:
@@ -195,7 +195,7 @@ class Eq4Check:
 
 
 def eq4_rack_thickness(design: SatelliteDesign) -> Eq4Check:
-    """Compare seed Eq. 4 with the rack that actually cuts Eq. 3.
+    """Compare Kapitonov et al. Eq. 4 with the rack that actually cuts Eq. 3.
 
     A rack at shift x rolls on the reference circle with its line at ``-x m`` from the datum (towards its
     own root when x < 0), where its tooth is ``s_datum - 2 x m tan(alpha)`` thick; the gear tooth is the

@@ -16,16 +16,16 @@ With ``a = e = m`` the first equation fixes alpha_w from the tooth difference al
   a tooth (:mod:`geometry.satellite.interference`: free play -3.6 mm at k = 0, -1.9 mm at k = 0.6).
 * ``z2 - z1 = 1`` (the eccentric reducer's case): cos(alpha_w) = cos(alpha)/2, alpha_w = 61.98 deg, and zero
   backlash for ``x2 + k/(2 tan alpha) = x1 + 1.0746 = 0.5746``: x2 = 0.5746 for the unthinned satellite,
-  -0.2497 for the seed's k = 0.6. The mesh works (contact at about +-40 deg from the line of centres,
-  several pairs within microns of contact: the seed's multi-pair mesh, in either direction).
+  -0.2497 for the paper's k = 0.6. The mesh works (contact at about +-40 deg from the line of centres,
+  several pairs within microns of contact: the paper's multi-pair mesh, in either direction).
 
-The seed gives x1 and k but not x2. Its zero-backlash value for k = 0.6 (x2 = -0.25) puts the wheel's tip
+Kapitonov et al. give x1 and k but not x2. Its zero-backlash value for k = 0.6 (x2 = -0.25) puts the wheel's tip
 circle 0.75 mm inside the satellite's tips opposite the mesh, where a tooth difference of one sets tooth
 against tooth: it jams. Chosen here: **z2 = 51, x2 = 0** (a standard wheel from a standard shaper, z0 = 25,
 x0 = 0, ha0 = 1.25 m, rho0 = 0.25 m: root radius r2 + 1.25 m = 80.25 mm), its tip circle bored to leave
 ``far_tip_clearance`` (0.5 mm) to the satellite's tip circle opposite the mesh (d_a2 = 148 instead of the
 standard 147, where the tips would touch). Then the unthinned satellite does not fit (backlash -2.51 mm on
-the working circle), the thinning that fits is k = 2 tan(alpha) (0.5746 - x2) = 0.418, and the seed's
+the working circle), the thinning that fits is k = 2 tan(alpha) (0.5746 - x2) = 0.418, and the paper's
 k = 0.6 leaves 1.09 mm of circumferential backlash (0.51 mm along the line of action).
 """
 from __future__ import annotations

@@ -21,7 +21,7 @@ from .model import BevelMounting
 __all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data"]
 
 # the bevel kind in the one validation layer (ltca.validation); ranges are those the cradle model and the
-# seed-000 synthesis are known to handle (outside them the Newton solves of generation and TCA lose the flank)
+# Cao et al. (2008) synthesis are known to handle (outside them the Newton solves of generation and TCA lose the flank)
 _FLANK = Table({
     "path_angle_deg": Num(-60, 60, "deg", required=True, note="contact-path angle eta2 on the gear flank"),
     "te_magnitude_arcsec": Num(1, 200, "arcsec", required=True, note="parabolic TE amplitude over a cycle"),

@@ -1,4 +1,4 @@
-"""Spiral bevel ``ltca tca``: synthesise the pinion of a case (seed 000, case read by :mod:`ltca.bevel.case`),
+"""Spiral bevel ``ltca tca``: synthesise the pinion of a case (Cao et al. 2008, case read by :mod:`ltca.bevel.case`),
 run the TCA, print a Gleason-style settings summary and write summary.json and plots; the stage benchmark.
 """
 from __future__ import annotations
@@ -214,7 +214,7 @@ def bevel_benchmark(repeat: int = 3, case_path: str | None = None) -> dict:
     ``generation``: both members, both flanks, 20 x 30 grids (depth x face); ``tca``: continuous-tangency TCA
     of one flank pair over three cycles (16 steps per cycle); ``separation``: separation-field TCA of one
     flank pair over three cycles (20 x 30 grids, off-grid refinement); ``synthesis``: both pinion flanks,
-    control-point design and blank-offset redesign.  Issue 3 targets: 2 s, 2 s, -, 10 s.
+    control-point design and blank-offset redesign.
     """
     import time
 

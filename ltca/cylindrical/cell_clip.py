@@ -5,7 +5,7 @@ slice) and narrow across it. On a helical flank the edges of the contact region 
 pinion's tip and form circles (``s = s_hi``, ``s = s_lo``), the face ends (``z = +-b/2``) and the locus of the
 gear's tip edge on the pinion flank. A cell judged by its centre alone is either wholly in or wholly out, so the
 length of contact line jumps by up to a cell (a slice, 3 mm on helical C14) as the line moves over the lattice
-from one position to the next: the per-position TE, root stress and peak pressure zig-zag (issue 11).
+from one position to the next: the per-position TE, root stress and peak pressure zig-zag.
 
 Here each cell is the segment ``(s, z) = (s_m + v ds, z_m + v dz)``, ``v`` in ``[-1/2, 1/2]``, between the ends of
 its centre line (straight on the developed flank; ``s`` departs from linear by a few um over a cell), clipped to

@@ -52,10 +52,10 @@ class Fidelity:
         The cap is for tip-edge contact: a sharp edge makes a kink in the unloaded gap, and cells sample
         it at their centres only, so its minimum is missed by up to half a cell times the slope jump. A
         nearly conformal pair (internal, tooth difference one) has a nominal half-width of most of a
-        module, and cells from it alone miss the kink by more than its share of the deflection. Seed
-        004 at 3000 N m (``b`` = 2.50 mm, coarse): 0.83 mm cells saw the wheel's tip corner on satellite
-        tooth -8 at 41.0 um instead of 28.5 um (the exact gap) and gave that pair a share of 0.051; the
-        share is 0.0995 to 0.1006 for every cell of 0.04 module (0.12 mm) or less (measured down to 0.0133)."""
+        module, and cells from it alone miss the kink by more than its share of the deflection. On the
+        eccentric planetary pair at 3000 N m, 0.83 mm cells read the gap at the wheel's tip corner on
+        satellite tooth -8 12 um too wide and halved that pair's share; every cell size of 0.04 module
+        or less gives the same share within 1 %."""
         ds = half_width / self.cells_per_b
         return min(ds, self.ds_max) if self.ds_max > 0 else ds
 
@@ -63,7 +63,7 @@ class Fidelity:
         """The knobs for a pair: a helical face gets at least ``face_width / slice_length`` slices. The contact
         line crosses the flank's tip and root edges there at a small angle (about 10 deg on helical C14), and a
         cell as long as a slice of a wide face resolves that crossing too coarsely: the TE and the pressure near
-        the edges ripple as the crossing passes from one slice to the next (issue 11)."""
+        the edges ripple as the crossing passes from one slice to the next."""
         if not helical or self.slice_length <= 0:
             return self
         return dataclasses.replace(self, slices=max(self.slices, int(np.ceil(face_width / self.slice_length - 1e-9))))

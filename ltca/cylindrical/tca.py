@@ -198,7 +198,7 @@ def split_roll(model: PairModel, roll: np.ndarray) -> tuple[np.ndarray, np.ndarr
 def double_flank_tca(model: PairModel, roll: np.ndarray, teeth=range(-2, 3)) -> tuple[np.ndarray, np.ndarray]:
     """Unloaded drive- and coast-side TE (arcsec of the gear) at pinion roll angles ``roll`` (rad, any range).
 
-    Sign as in seed 003: TE = gear position minus its kinematic position (positive = ahead). The drive
+    Sign as in Wang et al.: TE = gear position minus its kinematic position (positive = ahead). The drive
     flanks touch with the gear behind (TE <= 0), the coast flanks with the gear ahead, so the backlash
     curve is coast TE minus drive TE (>= 0 when the pair has play)."""
     r_c, cyc = split_roll(model, roll)

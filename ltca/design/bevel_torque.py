@@ -1,7 +1,7 @@
-"""The bevel m21 against the design torque (issue 14, physics): a constrained scan of the working flank's TE
+"""The bevel m21 against the design torque (physics): a constrained scan of the working flank's TE
 magnitude m21 at a fixed path angle eta2, with each design torque as the only (top) torque.
 
-What it shows (seed 000's eta2 = 22 deg, 8 positions, coarse fidelity; the table of the closing note). The loaded TE
+What it shows (the path angle eta2 = 22 deg of Cao et al. 2008, 8 positions, coarse fidelity). The loaded TE
 peak-to-peak over m21 has two basins: the lowest m21 (1 arcsec: the neighbouring pairs share the load early and
 flatten the loaded TE, 4.4 arcsec at 175 and 350 N m), where the loaded pattern runs along the path past the
 transfer points into the toe (toe/heel margin 0.16 mm); and an interior minimum, where the parabola absorbs the
@@ -20,7 +20,7 @@ points: the first feasible one), the constrained optimum and its margins, the un
 constraint is active at the constrained optimum; with a tolerance box, the constrained optimum and the boundary
 design are checked again over its corners (``*_over_box``: the smallest margins, the largest edge share).
 
-Reproduce the table of the closing note (one process: 1 min 43 s on a quiet 2-core machine)::
+Reproduce the table (one process, about 2 min on 2 cores)::
 
     python3 -m ltca.design.bevel_torque cases/spiral_bevel_optimise.toml --out out/m21_torque.json
 """
@@ -167,7 +167,7 @@ def main(argv: list[str] | None = None) -> int:
     [--box E P G] [--out FILE.json]``: the scan, its table on stdout."""
     ap = argparse.ArgumentParser(prog="python3 -m ltca.design.bevel_torque", description=__doc__.split("\n\n")[0])
     ap.add_argument("case")
-    ap.add_argument("--eta2", type=float, default=22.0, help="working path angle, deg (default seed 000's 22)")
+    ap.add_argument("--eta2", type=float, default=22.0, help="working path angle, deg (default 22, Cao et al. 2008)")
     ap.add_argument("--torques", type=float, nargs="+", default=list(TORQUES), help="design torques, N m")
     ap.add_argument("--m21", type=float, nargs="+", default=list(M21), help="TE magnitudes to scan, arcsec")
     ap.add_argument("--margin", type=float, default=1.0, help="required toe/heel margin, mm")

@@ -1,7 +1,7 @@
-"""The starting design beside the optimum (issue 14, "against seed 000"): one table of the flank targets, the
+"""The starting design beside the optimum (against Cao et al. 2008): one table of the flank targets, the
 loaded TE peak-to-peak at each torque of the case and the edge figures over the mounting tolerance box.
 
-For the bevel case the starting design is the case's own (seed 000's targets: working eta2 22 deg / m21 8.25
+For the bevel case the starting design is the case's own (the targets of Cao et al. 2008: working eta2 22 deg / m21 8.25
 arcsec, coast 14 deg / 11.25 arcsec, the coast path angle -14 deg in our sign convention, see
 ``cases/spiral_bevel_optimise.toml``). The box figures are the worst over the nominal mounting and the corners of
 ``[design.constraints] tolerance_box`` at the top torque (:meth:`ltca.design.bevel.BevelBackend.box_report`):

@@ -1,7 +1,8 @@
 """The optimisation problem, independent of the gear kind: what a backend measures for one candidate, how that
 becomes the objective and the constraint violation, and which backend serves a case.
 
-A backend (cylindrical now: :class:`ltca.design.cylindrical.CylindricalBackend`; bevel later) is any object with
+A backend (:class:`ltca.design.cylindrical.CylindricalBackend`, :class:`ltca.design.bevel.BevelBackend`) is any
+object with
 
 ``kind``
     ``"cylindrical"`` / ``"bevel"``: the key of its variables in :data:`ltca.design.schema.VARIABLES`;

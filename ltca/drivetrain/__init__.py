@@ -1,5 +1,5 @@
-"""ltca.drivetrain: drive-train deflection budgets (``budget*``, seed 003), backlash curves (``backlash``) and the
-ratio errors of a cutting machine's kinematic chains (``chain*``, seed 002): the ``ltca budget`` and
+"""ltca.drivetrain: drive-train deflection budgets (``budget*``, Wang et al.), backlash curves (``backlash``) and the
+ratio errors of a cutting machine's kinematic chains (``chain*``, Nguyen et al. 2020): the ``ltca budget`` and
 ``ltca chain`` commands.
 
 Imports geometry, ltca.case / ltca.errors, and ltca.cylindrical (the budget's backlash uses the cylindrical

@@ -1,4 +1,4 @@
-"""Drive-train stiffness and hysteresis budget (seed 003): the ``ltca budget`` command and its outputs.
+"""Drive-train stiffness and hysteresis budget (Wang et al.): the ``ltca budget`` command and its outputs.
 
 Table, CSV and plot of a :class:`BudgetResult`, and the backlash curve of a gear pair shifted by the
 budget (Eq. 20-21). The members and Eq. (19) are in :mod:`ltca.drivetrain.budget_model`, the case file in
@@ -47,7 +47,7 @@ def plot_budget(result: BudgetResult, path: str) -> None:
 
 
 def backlash_from_pair(spec: dict, result: BudgetResult) -> list:
-    """Seed 003 Eq. 20-21 on a cylindrical pair: unloaded double-flank TE by TCA, shifted by the budget.
+    """Wang et al. Eq. 20-21 on a cylindrical pair: unloaded double-flank TE by TCA, shifted by the budget.
 
     The TE is that of the gear; the budget's deflections are taken as referred to the same shaft."""
     import dataclasses

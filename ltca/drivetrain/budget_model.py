@@ -1,4 +1,4 @@
-"""Drive-train stiffness and hysteresis budget: torsional members in series (seed 003).
+"""Drive-train stiffness and hysteresis budget: torsional members in series (Wang et al.).
 
 Each member turns the torque on the reference shaft into an angular deflection referred to that
 shaft; the members are in series, so the deflections add. The initial hysteresis (backlash seen at
@@ -8,7 +8,7 @@ the reference shaft under load) is Wang et al., Eq. (19)::
 
 with k_i the (secant) torsional stiffness of gear mesh, shaft, ball spline and coupling at the load T.
 
-Source: Wang Guangjian et al., Chinese Journal of Engineering, p. 1061 (seed 003, shared/seeds/003_*.txt),
+Source: Wang Guangjian et al., Chinese Journal of Engineering, p. 1061,
 Table 2 (stiffnesses) and Table 3 (deformations at 2.5, 5, 7.5, 10 N m).
 
 Member models (SI-consistent inside: N, mm, rad)
@@ -20,7 +20,7 @@ Member models (SI-consistent inside: N, mm, rad)
 * ``BallSplineMember`` Hertzian ball contacts, k = c_s P^(1/3) [N/m] with P = T / r the force at the
   ball pitch radius r (Table 2); secant use: delta = P / k = P^(2/3) / c_s, theta = delta / r.
 
-Radii implied by Table 3 (the seed page gives no gear or spline data; derivation in the report and in
+Radii implied by Table 3 (the paper's page gives no gear or spline data; derivation in the report and in
 ``cases/budget_wang.toml``): the gear row is linear with slope in [0.0220, 0.0225] 1e-3 deg/(N m)
 which, with c = 20 N/(um mm), needs b r_b^2 in [127.3e3, 130.2e3] mm^3 (we take b = 20 mm,
 r_b = 80 mm); the spline row is proportional to T^(2/3) (secant form, not the integrated tangent form
@@ -102,7 +102,7 @@ class MeshMember:
     ----------
     name : str
     stiffness_per_width : float
-        c, N/(mm mm) (20 N/(um mm) = 2.0e4 N/(mm mm), seed 003 Table 2).
+        c, N/(mm mm) (20 N/(um mm) = 2.0e4 N/(mm mm), Wang et al. Table 2).
     face_width, base_radius : float
         b and r_b of the gear on the member's shaft, mm.
     ratio : float
@@ -126,13 +126,13 @@ class MeshMember:
 
 @dataclass(frozen=True)
 class BallSplineMember:
-    """Ball spline with Hertzian stiffness k = c_s P^(1/3) (seed 003 Table 2: c_s = 9.768e7).
+    """Ball spline with Hertzian stiffness k = c_s P^(1/3) (Wang et al. Table 2: c_s = 9.768e7).
 
     Parameters
     ----------
     name : str
     coefficient : float
-        c_s in N^(2/3)/mm (the seed's 9.768e7 N^(2/3)/m is 9.768e4 in these units).
+        c_s in N^(2/3)/mm (the paper's 9.768e7 N^(2/3)/m is 9.768e4 in these units).
     pitch_radius : float
         Ball pitch radius r, mm: P = T / r and theta = delta / r.
     ratio : float
@@ -196,7 +196,7 @@ class BudgetResult:
     extra: dict = field(default_factory=dict)
 
     def table(self) -> str:
-        """Plain text table in 1e-3 deg, laid out as seed 003 Table 3."""
+        """Plain text table in 1e-3 deg, laid out as Wang et al. Table 3."""
         head = f"{'member':<22}" + "".join(f"{t:>10.3g} N m" for t in self.torque)
         lines = [self.title, "deflection / (1e-3 deg), referred to the reference shaft", head]
         rows = list(zip(self.names, self.deflection)) + [("total", self.total),

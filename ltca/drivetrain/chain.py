@@ -1,4 +1,4 @@
-"""Transmission-ratio error of a machine's kinematic chains (seed 002): the ``ltca chain`` command.
+"""Transmission-ratio error of a machine's kinematic chains (Nguyen et al. 2020): the ``ltca chain`` command.
 
 The method and the chains are in :mod:`ltca.drivetrain.chain_model`, the case file in :mod:`ltca.drivetrain.chain_case`;
 their public names are importable from here as well.

@@ -64,7 +64,7 @@ def _chain(tab: dict, where: str, work: dict) -> Chain:
     turn = _num(tab, "input_turn_deg", where)
     if kind == "indexing":
         required = 360.0 / (zp * turn)
-    else:  # crown gear of a 90 deg pair: zd = sqrt(z1^2 + z2^2) (seed 002, Table 2)
+    else:  # crown gear of a 90 deg pair: zd = sqrt(z1^2 + z2^2) (Nguyen et al. 2020, Table 2)
         required = np.hypot(zp, _int(tab, "mate_teeth", where)) / zp
     els = tab.get("element")
     if not isinstance(els, list) or not 2 <= len(els) <= 500:

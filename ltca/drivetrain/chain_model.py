@@ -1,7 +1,7 @@
-"""Transmission-ratio error of a machine's kinematic chains (seed 002) and its tooth errors.
+"""Transmission-ratio error of a machine's kinematic chains (Nguyen et al. 2020) and its tooth errors.
 
 Source: Nguyen Tho Son, Nguyen Van Mui, Le Thanh Son, J. Science & Technology (HaUI) 56(4), 2020,
-pp. 48-52 (shared/seeds/002_*.txt), Gleason-system generator Modul ZFTKK250X5. Method (Sect. 3):
+pp. 48-52, Gleason-system generator Modul ZFTKK250X5. Method (Sect. 3):
 
 * n: revolutions of each element during one cycle (from the chain's kinematics);
 * zk = frac(n) z, the "odd teeth" passed beyond whole revolutions;
@@ -95,7 +95,7 @@ class Chain:
 
 @dataclass(frozen=True)
 class ChainEvaluation:
-    """Per-element table and chain ratio error (seed 002 Tables 3-9 layout).
+    """Per-element table and chain ratio error (Nguyen et al. 2020 Tables 3-9 layout).
 
     Arrays per element: ``turns`` (rev), ``zk``, ``fp`` (um), ``F`` (um), ``dphi`` (deg, own),
     ``rot_max``, ``rot_min`` (deg). Per mesh: ``pairs``, ``ratio_max``, ``ratio_min``, ``ratio_nom``.
@@ -173,7 +173,7 @@ class ChainEvaluation:
 
 
 def evaluate_chain(chain: Chain, honour_printed: bool = True) -> ChainEvaluation:
-    """Ratio error of a kinematic chain by the seed-002 method (see module docstring).
+    """Ratio error of a kinematic chain by the method of Nguyen et al. (2020) (see module docstring).
 
     Parameters
     ----------
@@ -226,7 +226,7 @@ def evaluate_chain(chain: Chain, honour_printed: bool = True) -> ChainEvaluation
                            float(np.prod(ratio_nom)), chain.required_ratio, honour_printed)
 
 
-# ---------------------------------------------------------------- into the teeth (issue 5, item 4)
+# ---------------------------------------------------------------- into the teeth
 
 def pitch_deviation_bound(ev: ChainEvaluation) -> float:
     """Bound of a single pitch deviation of the workpiece, mm: half the indexing band.
@@ -244,7 +244,7 @@ class RollRatioError:
     Attributes
     ----------
     nominal : float
-        From the change gears (e.g. 0.745193 for 0.745356 in seed 002).
+        From the change gears (e.g. 0.745193 for 0.745356 in Nguyen et al. 2020).
     low, high : float
         Bounds from the chain's error band.
     """

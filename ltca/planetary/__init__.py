@@ -1,4 +1,4 @@
-"""ltca.planetary: the eccentric planetary satellite of seed 004 in its central wheel.
+"""ltca.planetary: the eccentric planetary satellite of Kapitonov et al. 2014 in its central wheel.
 
 ``case`` reads a ``[satellite]`` case (the satellite, its three forming tools, the central wheel, supports,
 torques as fractions of the ISO 6336-3 rated torque); ``model`` forms the satellite, cuts the wheel and

@@ -1,4 +1,4 @@
-"""Case files of the eccentric planetary satellite (seed 004): a TOML case with a ``[satellite]`` table.
+"""Case files of the eccentric planetary satellite (Kapitonov et al. 2014): a TOML case with a ``[satellite]`` table.
 
 Tables (engineer's units, converted once here to mm, rad, N mm, MPa):
 

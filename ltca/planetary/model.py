@@ -6,7 +6,7 @@ eccentricity as a :class:`ltca.cylindrical.model.PairModel`, so that the cylindr
 contact cells and contact solve run on this pair unchanged. Two assumptions of the cylindrical chain do
 not hold here and are replaced:
 
-* the working pitch circle (``r_w1 = e z1 / (z2 - z1)`` = 150 mm for seed 004) lies far outside both
+* the working pitch circle (``r_w1 = e z1 / (z2 - z1)`` = 150 mm for Kapitonov et al. 2014) lies far outside both
   gears, so the pair is not calibrated at a pitch point: the wheel phase is the symmetric placement of
   :class:`geometry.satellite.EccentricMesh` (satellite tooth 0 centred in a wheel space on the line of
   centres at ``phi1 = 0``), and a pinion angle ``phi1`` of the pair is the mesh position ``phi = -phi1``

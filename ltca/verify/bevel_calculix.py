@@ -1,4 +1,4 @@
-"""``ltca validate --reference calculix --case <bevel case>``: our bevel LTCA against CalculiX (issue 13).
+"""``ltca validate --reference calculix --case <bevel case>``: our bevel LTCA against CalculiX.
 
 At each pinion angle (fractions of a mesh cycle 2 pi / z1 from the mean point) at the case's middle torque:
 our loaded contact (:func:`ltca.bevel.loaded.solve_position`, default fidelity) and CalculiX on the independent
@@ -6,7 +6,7 @@ whole-member model (:func:`ltca.verify.bevel_ccx.solve_bevel_ccx`).  Compared: t
 minus unloaded TE, arcsec of the gear), the torque share of each tooth pair, the interior peak flank pressure
 (away from the edges; ours: the largest cell pressure of the cells at no edge) and the wall time.  The first
 position is solved on a ladder of contact-zone sizes h0, h0/1.5, h0/1.5^2 (CalculiX's convergence, Richardson
-estimate), the others at ``level``.  Bounds (issue 13): TE 3 %, share 0.03, peak pressure 5 % of CalculiX.
+estimate), the others at ``level``.  Bounds: TE 3 %, share 0.03, peak pressure 5 % of CalculiX.
 
 With ``freeze`` the CalculiX values are written as a frozen reference with their provenance (command, mesh
 sizes, CalculiX version, date), read by ``tests/test_reference_calculix_bevel.py``.

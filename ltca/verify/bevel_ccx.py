@@ -1,4 +1,4 @@
-"""CalculiX on the whole spiral bevel pair: the independent FE check of the bevel LTCA (issue 13).
+"""CalculiX on the whole spiral bevel pair: the independent FE check of the bevel LTCA.
 
 Both members are OpenCASCADE solids with every tooth (:mod:`fem.solids.bevel_occ`: lofted from exact flank
 points, fused with a revolved blank, gmsh tetrahedra refined on the contact zones), not our mapped body
@@ -22,13 +22,10 @@ a slave against the gear's flank.  The gear's top edge meets the pinion's lower 
 the gear's tip corner (depth ``max(corner, 2 h_zone)`` under the gear's face cone, the blank's,
 :func:`under_top`): ``P`` the pinion band beyond that depth (slave) against the gear's flank below it (master),
 ``W`` the gear's tip-corner zone (slave) against the pinion's whole flank (master); a pair's torque sums both.
-Both members' top-edge lines of the wide zone are refined with the zone.  Measured at phi1 = 0, 450 um zone:
-the first deck (pinion band slave everywhere, zone refined only where the gap < ``cap_refine``) had pinion
-nodes 1 mm past the gear's face cone 18 um into the extended plane of the gear's last flank facets (84 GPa, pair
-torques 0.944 of the torque); with the split alone the spike moved to the gear's top-edge nodes on the pinion's
-coarse lower-flank facets (72 GPa at 16 um, nodes 39-99 um from the exact pinion flank unloaded); with the edge
-lines refined the nodal maximum is 2.7 GPa at the pinion's top edge, the gear's corner carries nothing (as
-ours) and the pair torques sum to 0.998 of the torque.
+Both members' top-edge lines of the wide zone are refined with the zone: otherwise nodes of one member's top
+edge sink 16-18 um into the extended plane of the other's coarse facets (nodal spikes of 70-85 GPa).  With the
+split and the refined edge lines (phi1 = 0, 450 um zone) the nodal maximum is 2.7 GPa at the pinion's top edge,
+the gear's corner carries nothing (as ours) and the pair torques sum to 0.998 of the torque.
 
 Read per position: theta (arcsec of the gear), each pair's torque share about the pinion axis (total contact
 force of the pair times its pressure centroid), and the peak flank pressure away from the edges (pinion top,

@@ -1,6 +1,6 @@
 """Bevel LTCA checks on the command line: ``ltca validate`` (elliptic Hertz with and without the near field,
 the light-load limit, the V-H table of pattern shifts), ``ltca convergence`` (the fidelity ladder: time against
-error) and ``ltca bench`` (cold medians of the issue's speed figures) for a case with a [bevel] table.
+error) and ``ltca bench`` (cold medians of the stages' wall times) for a case with a [bevel] table.
 
 References: elliptic Hertz (:mod:`fem.hertz`) with the relative curvature of the unloaded TCA's contact ellipse
 (Litvin's curvature analysis of both generated surfaces, :func:`geometry.bevel.tca.tca`); the TCA's contact point

@@ -1,4 +1,4 @@
-"""Cross-check of the loaded contact against CalculiX on the same gear pair (issue 4).
+"""Cross-check of the loaded contact against CalculiX on the same gear pair.
 
 For each mesh position both members' tooth segments (the same teeth, bore and outline as our
 compliance bodies) are meshed with quadratic tetrahedra refined in a band around the unloaded contact

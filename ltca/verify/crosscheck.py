@@ -1,5 +1,5 @@
 """``ltca validate --reference calculix``: ours against CalculiX over a mesh cycle, with CalculiX's own
-convergence checks (issue 4).
+convergence checks.
 
 Every position is solved by both; CalculiX at one rung of its contact-band ladder (:func:`ccx_ladder`).
 Two ladders say how far that rung is from converged:
@@ -31,7 +31,7 @@ from ..cylindrical.loaded_model import LoadedModel
 
 __all__ = ["BOUNDS", "BOUNDS_HELICAL_TE", "PressureLadder", "pressure_ladder", "run_calculix_validation"]
 
-BOUNDS = {"te_rel": 0.03, "share_abs": 0.03, "pressure_rel": 0.05}   # issue 4, spur pair
+BOUNDS = {"te_rel": 0.03, "share_abs": 0.03, "pressure_rel": 0.05}   # spur pair
 BOUNDS_HELICAL_TE = 0.05
 COARSE_BODY = (0.45, 1.6)       # element sizes away from the contact, modules (our coarse fidelity)
 
@@ -112,7 +112,7 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
     reference pressure. Each CalculiX run is kept (deck, results, ``result.json``) in its own folder under
     ``out`` and reused when the same deck is asked for again, so an interrupted validation resumes where
     it stopped. Prints a table, writes ``calculix.csv``, ``convergence.csv``, ``pressure_ladder.csv`` and
-    ``calculix.png`` to ``out`` and returns 0 when all positions are within the issue's bounds, 1
+    ``calculix.png`` to ``out`` and returns 0 when all positions are within :data:`BOUNDS`, 1
     otherwise. Raises ``CaseError`` on a bad case or
     position list and ``fem.calculix.run.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
     from fem.calculix.run import ccx_path

@@ -1,4 +1,4 @@
-"""The elliptic-fit peak of CalculiX's contact pressure over face slices, and where it is (issue 18).
+"""The elliptic-fit peak of CalculiX's contact pressure over face slices, and where it is.
 
 Nodal contact pressures of penalty contact on quadratic faces scatter by tens of per cent at a few elements per
 contact width; the fit of p^2 by a parabola across the band (:func:`ltca.cylindrical.iso6336.fit_elliptic`) is the

@@ -1,4 +1,4 @@
-"""``ltca validate --reference calculix-whole`` on a planetary case: the satellite in its central wheel (issue 15).
+"""``ltca validate --reference calculix-whole`` on a planetary case: the satellite in its central wheel.
 
 Ours: the planetary LTCA (:mod:`ltca.planetary.loaded`: both whole bodies' compliance, every pair that can
 close). CalculiX: the independent whole-gear model (:func:`ltca.verify.whole_gear.solve_whole`): both gears
@@ -21,7 +21,7 @@ close can). Same quantities on both sides:
   value; information only: most pairs of this mesh touch at a tip edge, where the pressure is singular and
   both figures depend on the mesh).
 
-Bounds (issue 15): TE 3 %, every share 0.03. The first position is also solved with the contact band refined
+Bounds: TE 3 %, every share 0.03. The first position is also solved with the contact band refined
 ``refine`` times by 1.5 (the CalculiX convergence ladder). ``freeze`` writes the CalculiX results (finest rung
 at the first position) with their provenance as a frozen reference (JSON).
 """
@@ -42,7 +42,7 @@ from .whole_gear import WholeSettings, solve_whole
 
 __all__ = ["BOUNDS_PLANETARY", "planetary_settings", "prepare_ours", "solve_ours", "run_planetary_whole_validation"]
 
-BOUNDS_PLANETARY = {"te_rel": 0.03, "share_abs": 0.03}   # issue 15
+BOUNDS_PLANETARY = {"te_rel": 0.03, "share_abs": 0.03}
 
 
 def planetary_settings(b_nom: float, module: float, band_um: float) -> WholeSettings:

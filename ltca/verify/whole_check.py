@@ -9,12 +9,12 @@ pinion and gear (largest principal stress on the loaded teeth's tension-side fil
 the fillets refined ``refine`` times by 1.5 (``ladder`` "finer"), coarsened ("coarser") or both ("both"):
 CalculiX's own convergence check. ``body`` "coarse" (``--coarse-body``) coarsens the elements away from the
 contact band and the fillets (:data:`ltca.verify.whole_gear.BODIES`): a wide helical face.
-Bounds (issue 11): TE 3 %, share 0.03, stiffness 3 %. CalculiX runs are kept under ``out`` and reused.
+Bounds: TE 3 %, share 0.03, stiffness 3 %. CalculiX runs are kept under ``out`` and reused.
 
 With ``freeze`` the CalculiX results (finest rung at the first position, the base elsewhere) are written as
 a frozen reference (JSON) with their provenance: CalculiX version, date, deck hash, mesh sizes, nodes and
 elements, wall times, the refinement ladder and the command that regenerates them, and our figures at the
-time (issue 18). A read-out (flank peak, root stress) that moves more than 5 % over the ladder's last
+time. A read-out (flank peak, root stress) that moves more than 5 % over the ladder's last
 refinement is named under ``unconverged`` with its numbers: recorded, not for comparison.
 """
 from __future__ import annotations
@@ -34,7 +34,7 @@ from .whole_gear import BODIES, stiffness, solve_whole, whole_settings
 
 __all__ = ["BOUNDS_WHOLE", "run_whole_validation", "ccx_version", "ours_figures"]
 
-BOUNDS_WHOLE = {"te_rel": 0.03, "share_abs": 0.03, "stiffness_rel": 0.03}   # issue 11
+BOUNDS_WHOLE = {"te_rel": 0.03, "share_abs": 0.03, "stiffness_rel": 0.03}
 
 #: the refinement ladder at the first position: factors on the base contact band and fillet size, coarsest first
 LADDERS = {"finer": lambda n: [1.5 ** -i for i in range(n + 1)],
@@ -188,7 +188,7 @@ def run_whole_validation(case_path: str, positions: list[float], out: str, band_
 
 
 def _h_fillet(c) -> float:
-    """The fillet element size of a run, mm (runs before the fillet refinement: the flank's)."""
+    """The fillet element size of a run, mm (a run that records none: the flank's)."""
     st = c.info["settings"]
     return st.get("h_fillet") or st["h_flank"]
 
@@ -216,7 +216,7 @@ def _entry(c) -> dict:
 FLANK_AT = ("the flank peak's pinion tooth, the radius (pinion frame) of the fit's centre and the slice's mid z, mm, "
             "the fitted half-width, um, and the nodes fitted (ltca.verify.fitted_peak)")
 #: a read-out that moves more than this over the ladder's last refinement is not converged: the frozen reference
-#: records it under ``unconverged`` with the numbers, and a test does not compare it (issue 18: 5 % bounds)
+#: records it under ``unconverged`` with the numbers, and a test does not compare it (5 % bounds)
 CONVERGED = {"flank_pressure": 0.05, "root_pinion": 0.05, "root_gear": 0.05}
 
 

@@ -1,4 +1,4 @@
-"""CalculiX on whole gears with every tooth: the check that shares no assumption with our body (issue 11).
+"""CalculiX on whole gears with every tooth: the check that shares no assumption with our body.
 
 Both members are meshed by :func:`fem.solids.full_gear.build_full_gear` (every tooth, the real bore, a web
 where the case has one; not our compliance body :mod:`fem.solids.gear_body`), refined in a band around
@@ -9,7 +9,7 @@ node may only turn about the gear axis, and the pinion torque acts there. As in
 :mod:`ltca.verify.calculix`, the pinion starts a small rotation ``delta`` into the gear (an ISO-like
 stiffness estimate, not ours) and ``delta`` is added back to the rotation read.
 
-Internal pairs (issue 15: the satellite of an eccentric reducer in its central wheel): the wheel is the
+Internal pairs (the satellite of an eccentric reducer in its central wheel): the wheel is the
 ring out to ``model.r_bore2`` and is held on that outer cylinder (``rim``, the housing); the pinion
 (satellite) bore turns about the satellite axis. Such a pair has a large backlash, so the satellite is first
 turned by the rigid rotation to first contact ``theta0`` (the unloaded geometry, not our compliance), the
@@ -18,7 +18,7 @@ that carry a contact line get the fine flank size (a 50/51-tooth pair is too lar
 Most pairs of a tooth difference of one touch at a tip edge: the wheel's tip corner on the satellite flank, or
 the satellite's tip corner on the wheel flank. CalculiX's surface-to-surface contact pushes along the master's
 normal, so the smooth side is the master, and the loaded contact of one tooth can reach both corners
-whatever its unloaded line does (seed 004 at 3000 N m: tooth -6, first touching mid-flank, spreads to the
+whatever its unloaded line does (Kapitonov et al. 2014 at 3000 N m: tooth -6, first touching mid-flank, spreads to the
 wheel's tip corner; with the satellite as slave there its nodes took up to 33 GPa at 3-6.5 um overclosure
 against the wheel's tip land and pushed along its normal, lever 65.2 mm about the satellite axis instead of
 r_b1 = 70.48 mm). So every tooth of an internal pair has two pairs on one partition of the wheel's band: the

@@ -1,4 +1,4 @@
-"""Root (fillet) stress of the whole-gear CalculiX model, read as our solver reads its own (issue 18).
+"""Root (fillet) stress of the whole-gear CalculiX model, read as our solver reads its own.
 
 Our solver's root stress (:meth:`fem.compliance.BodyCompliance.root_max`, points from
 :func:`fem.fillet.fillet_points`) is, per loaded tooth, the largest principal stress at points
