@@ -1,48 +1,34 @@
 """The one entry of every loaded analysis: :func:`run` a :class:`ltca.cases.Case` of any gear kind and get a
 :class:`ltca.results.LoadedResult`; :func:`save_result` writes it into a run folder. The command line, studies
 and scripts all come through here; a gear kind supplies its plan / execute / write functions
-(:data:`ANALYSES`), nothing else. Nothing here prints or picks a plotting backend.
+(:mod:`ltca.kinds`), nothing else. Nothing here prints or picks a plotting backend.
 """
 from __future__ import annotations
 
-import hashlib
 import math
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
 from .cases import PAIR_KINDS, Case, load_case
 from .errors import CaseError
-from .results import LoadedResult, TorqueFigures
+from .kinds import Analysis
+from .results import LoadedResult
 
-__all__ = ["run", "plan", "execute", "save_result", "write_into", "Analysis", "ANALYSES"]
+__all__ = ["run", "plan", "execute", "ANALYSES"]
 
 Progress = Callable[[str], None]
 
 
-@dataclass(frozen=True)
-class Analysis:
-    """What a gear kind supplies: ``plan(case, fidelity, positions, torques_nm, max_output_gb)`` (validate and
-    size, no FE work), ``execute(plan, progress, cache, store)`` (the analysis; returns the kind's run record),
-    ``result(case, run)`` (its LoadedResult) and ``write(result, head, stage, case_file, report, paraview_steps)``
-    (its files, summary.json excepted)."""
-    plan: Callable
-    execute: Callable
-    result: Callable
-    write: Callable
-    resumable: bool
-
-
 def _analysis(kind: str) -> Analysis:
     if kind == "cylindrical":
-        from .cylindrical import api
-        return api.ANALYSIS
+        from .kinds import cylindrical
+        return cylindrical.ANALYSIS
     if kind == "bevel":
-        from .bevel import api
-        return api.ANALYSIS
+        from .kinds import bevel
+        return bevel.ANALYSIS
     if kind == "planetary":
-        from .planetary import api
-        return api.ANALYSIS
+        from .kinds import planetary
+        return planetary.ANALYSIS
     raise CaseError("case", f"a {kind} case", f"a gear-pair case ({', '.join(PAIR_KINDS)}); a {kind} case runs "
                     f"with `ltca {kind}`")
 
@@ -100,56 +86,3 @@ def run(case: Case | str | Path, *, fidelity: str | None = None, positions: int 
     """
     case, p = plan(case, fidelity=fidelity, positions=positions, torques_nm=torques_nm)
     return execute(case, p, progress=progress, cache=cache)
-
-
-def figures_from(rec: dict) -> TorqueFigures:
-    """The typed headline figures of one torque record of a summary in the one vocabulary."""
-    nan = float("nan")
-    root = rec.get("max_root_stress_mpa") or {}
-    return TorqueFigures(
-        torque_nm=float(rec["torque_nm"]), te_loaded_ptp_arcsec=float(rec["te_loaded_ptp_arcsec"]),
-        te_unloaded_ptp_arcsec=float(rec.get("te_unloaded_ptp_arcsec", nan)),
-        te_loaded_mean_arcsec=float(rec.get("te_loaded_mean_arcsec", nan)),
-        max_flank_pressure_mpa=float(rec.get("max_flank_pressure_mpa", nan)),
-        max_contact_pressure_mpa=float(rec.get("max_contact_pressure_mpa", nan)),
-        max_root_stress_pinion_mpa=float(root.get("pinion", nan) if root.get("pinion") is not None else nan),
-        max_root_stress_gear_mpa=float(root.get("gear", nan) if root.get("gear") is not None else nan),
-        mesh_stiffness_mean_n_per_um=float(rec.get("mesh_stiffness_mean_n_per_um", nan)),
-        mesh_stiffness_mean_n_per_mm_um=float(rec.get("mesh_stiffness_mean_n_per_mm_um", nan)),
-        converged=bool(rec["converged"]), max_torque_residual=float(rec["max_torque_residual"]))
-
-
-def signature(case: Case, **settings) -> dict:
-    """What identifies a run's results: the case (its file's bytes, else its TOML text) and the settings."""
-    if case.file and Path(case.file).is_file() and case.data == load_case(case.file).data:
-        digest = hashlib.sha256(Path(case.file).read_bytes()).hexdigest()
-    else:
-        digest = hashlib.sha256(case.to_toml().encode()).hexdigest()
-    return {"case_sha256": digest, **settings}
-
-
-def write_into(result: LoadedResult, out: Path, *, report: bool = True, paraview_steps: int = 10,
-               extra: dict | None = None) -> dict:
-    """Write a result's files into the run folder ``out`` (already locked): every file through a staging folder,
-    ``summary.json`` last. Returns the summary as written."""
-    from .outputs import staging, write_json_atomic
-    head = dict(result.summary)
-    head["timings_s"] = dict(head.get("timings_s", {}))
-    head.update(extra or {})
-    a = _analysis(result.case.kind)
-    with staging(out) as stage:
-        a.write(result, head, stage, result.case.file or result.case.name, report, paraview_steps)
-    write_json_atomic(Path(out) / "summary.json", head)
-    return head
-
-
-def save_result(result: LoadedResult, out: str | Path, *, report: bool = True, paraview_steps: int = 10) -> Path:
-    """:meth:`LoadedResult.save`: lock ``out``, write every file atomically, record the status in run.json."""
-    from .outputs import RunDir, check_out_dir
-    out = check_out_dir(out)
-    if isinstance(paraview_steps, bool) or not isinstance(paraview_steps, int) or paraview_steps < 0:
-        raise CaseError("paraview_steps", paraview_steps, "a whole number of steps, 0 for none")
-    sig = signature(result.case, torques_nm=[f.torque_nm for f in result.figures])
-    with RunDir(out, f"LoadedResult.save ({result.case.name})", sig):
-        write_into(result, out, report=report, paraview_steps=paraview_steps)
-    return out

@@ -7,7 +7,9 @@ from __future__ import annotations
 import sys
 import time
 
-from .core import _analysis, execute, plan, write_into
+from .console import print_result
+from .core import _analysis, execute, plan
+from .results import write_into
 from .errors import CaseError
 
 __all__ = ["run_to_dir"]
@@ -38,7 +40,7 @@ def run_to_dir(case_path: str, out: str = "out", *, fidelity: str | None = None,
     if not write:
         result = execute(case, p, progress=say, cache=cache)
         head = dict(result.summary)
-        _print(case.kind, result, head, say)
+        print_result(result, head, say)
         return head
     from .outputs import signature_of
     sig = signature_of(case_path, fidelity=p.fidelity_name, positions=p.positions, torques_nm=list(p.torques_nm))
@@ -50,18 +52,5 @@ def run_to_dir(case_path: str, out: str = "out", *, fidelity: str | None = None,
             say(f"wrote {rd.out}: summary.json, results.nc, the plots, VTU and report ({time.perf_counter() - t0:.1f} s)")
     for w in head.get("warnings", [])[len(getattr(p, "warnings", ())):]:
         print(f"ltca run: warning: {w}", file=sys.stderr)
-    _print(case.kind, result, head, say)
+    print_result(result, head, say)
     return head
-
-
-def _print(kind: str, result, head: dict, say) -> None:
-    if kind == "cylindrical":
-        from .cylindrical.run import print_run
-        st = result._state
-        print_run(head, result.dataset, result.case.name, st.plan.positions, st.plan.case.cycles, say)
-    elif kind == "bevel":
-        from .bevel.run import print_run
-        print_run(result, head)
-    else:
-        from .planetary.run import print_run
-        print_run(result, head)

@@ -23,6 +23,7 @@ cylindrical pairs).
 """
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -31,8 +32,9 @@ import xarray as xr
 
 from . import accessor as _accessor  # noqa: F401  (registers the ``ltca`` dataset accessor)
 from .cases import Case
+from .errors import CaseError
 
-__all__ = ["LoadedResult", "TorqueFigures", "open_result", "TE_SIGN"]
+__all__ = ["LoadedResult", "TorqueFigures", "open_result", "save_result", "write_into", "TE_SIGN"]
 
 #: the sign convention of every TE in the project
 TE_SIGN = "TE is the driven member's lag behind its rigid-body position: positive when it lags"
@@ -79,6 +81,7 @@ class LoadedResult:
     figures: tuple[TorqueFigures, ...]
     timings: dict
     _state: Any = field(default=None, repr=False, compare=False)
+    _writer: Any = field(default=None, repr=False, compare=False)
 
     @property
     def converged(self) -> bool:
@@ -102,7 +105,6 @@ class LoadedResult:
     def save(self, out: str | Path, *, report: bool = True, paraview_steps: int = 10) -> Path:
         """Write what ``ltca run`` writes into the folder ``out`` (created; locked while writing; every file
         atomic; ``run.json`` records the status). Returns the folder."""
-        from .core import save_result
         return save_result(self, out, report=report, paraview_steps=paraview_steps)
 
 
@@ -119,3 +121,39 @@ def open_result(out: str | Path) -> tuple[xr.Dataset, dict]:
     with xr.open_dataset(nc, engine="h5netcdf") as ds:
         data = ds.load()
     return data, json.loads(js.read_text())
+
+
+def signature(case: Case, **settings) -> dict:
+    """What identifies a run's results: the case (its file's bytes, else its TOML text) and the settings."""
+    from .cases import load_case
+    if case.file and Path(case.file).is_file() and case.data == load_case(case.file).data:
+        digest = hashlib.sha256(Path(case.file).read_bytes()).hexdigest()
+    else:
+        digest = hashlib.sha256(case.to_toml().encode()).hexdigest()
+    return {"case_sha256": digest, **settings}
+
+
+def write_into(result: LoadedResult, out: Path, *, report: bool = True, paraview_steps: int = 10,
+               extra: dict | None = None) -> dict:
+    """Write a result's files into the run folder ``out`` (already locked): every file through a staging folder,
+    ``summary.json`` last. Returns the summary as written."""
+    from .outputs import staging, write_json_atomic
+    head = dict(result.summary)
+    head["timings_s"] = dict(head.get("timings_s", {}))
+    head.update(extra or {})
+    with staging(out) as stage:
+        result._writer(result, head, stage, result.case.file or result.case.name, report, paraview_steps)
+    write_json_atomic(Path(out) / "summary.json", head)
+    return head
+
+
+def save_result(result: LoadedResult, out: str | Path, *, report: bool = True, paraview_steps: int = 10) -> Path:
+    """:meth:`LoadedResult.save`: lock ``out``, write every file atomically, record the status in run.json."""
+    from .outputs import RunDir, check_out_dir
+    out = check_out_dir(out)
+    if isinstance(paraview_steps, bool) or not isinstance(paraview_steps, int) or paraview_steps < 0:
+        raise CaseError("paraview_steps", paraview_steps, "a whole number of steps, 0 for none")
+    sig = signature(result.case, torques_nm=[f.torque_nm for f in result.figures])
+    with RunDir(out, f"LoadedResult.save ({result.case.name})", sig):
+        write_into(result, out, report=report, paraview_steps=paraview_steps)
+    return out

@@ -178,8 +178,8 @@ def test_bevel_ltca_run_writes_outputs(tmp_path):
 
     import xarray as xr
 
-    from ltca.bevel.analysis import run_bevel_ltca
-    s = run_bevel_ltca(str(CASE), out=str(tmp_path), positions=6, fidelity="coarse", torques=[35.0, 175.0, -35.0],
+    from ltca.driver import run_to_dir
+    s = run_to_dir(str(CASE), out=str(tmp_path), positions=6, fidelity="coarse", torques=[35.0, 175.0, -35.0],
                        progress=False)
     t = {r["torque_nm"]: r for r in s["torques"]}
     assert list(t) == [35.0, 175.0, -35.0]
@@ -202,11 +202,11 @@ def test_bevel_ltca_run_writes_outputs(tmp_path):
 def test_flat_te_pinion_converges_with_edge_contact(tmp_path):
     """A pinion synthesised with m21 near 0 (TE magnitude 1 arcsec, an eighth of Cao et al.'s): no parabola to absorb
     the transfer, so the pairs hand over at the flank edges; every position converges and the edges are named."""
-    from ltca.bevel.analysis import run_bevel_ltca
+    from ltca.driver import run_to_dir
     text = CASE.read_text().replace("te_magnitude_arcsec = 8.25", "te_magnitude_arcsec = 1.0")
     case = tmp_path / "flat_te.toml"
     case.write_text(text)
-    s = run_bevel_ltca(str(case), out=str(tmp_path / "out"), positions=5, fidelity="coarse", torques=[350.0],
+    s = run_to_dir(str(case), out=str(tmp_path / "out"), positions=5, fidelity="coarse", torques=[350.0],
                        progress=False)
     t = s["torques"][0]
     assert t["torque_nm"] == 350.0

@@ -14,7 +14,7 @@ CYLINDRICAL = ["fzg_c14.toml", "helical_c14.toml", "internal_spur.toml", "fzg_c1
 
 @pytest.mark.parametrize("name", CYLINDRICAL)
 def test_cylindrical_case_runs_and_writes_results(name, tmp_path):
-    from ltca.cylindrical.run import run_case
+    from ltca.driver import run_to_dir as run_case
     out = tmp_path / "out"
     run_case(str(CASES / name), out=str(out), fidelity="coarse", positions=4, progress=False,
              cache=str(tmp_path / "cache"))

@@ -25,7 +25,7 @@ PLOT_IDS = ("te", "te_ptp", "te_harmonics", "load_sharing", "bearing_pattern_dia
 @pytest.fixture(scope="module")
 def flagship(tmp_path_factory):
     """``ltca run cases/fzg_c14.toml`` at its defaults; returns (out folder, summary)."""
-    from ltca.cylindrical.run import run_case
+    from ltca.driver import run_to_dir as run_case
     out = tmp_path_factory.mktemp("fzg") / "o"
     head = run_case(str(CASES / "fzg_c14.toml"), out=str(out), progress=False)
     return out, head

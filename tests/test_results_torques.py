@@ -245,7 +245,7 @@ def test_help_texts():
 def test_default_settings_three_torques_under_5_mb(tmp_path):
     """The flagship case at its defaults (default fidelity, 30 positions) and three torques: results.nc < 5 MB,
     no warnings."""
-    from ltca.cylindrical.run import run_case
+    from ltca.driver import run_to_dir as run_case
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         run_case(str(CASES / "fzg_c14.toml"), out=str(tmp_path / "o"), progress=False, torques=TORQUES)

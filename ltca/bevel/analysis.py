@@ -21,8 +21,7 @@ from .case import BevelCase
 from .loaded import BevelPosition, solve_position
 from .loaded_model import BevelBodies, BevelFidelity, loaded_model, prepare_bodies
 
-__all__ = ["build_pair", "cycle_positions", "analyse_torque", "BevelPlan", "BevelRun", "plan", "execute",
-           "run_bevel_ltca"]
+__all__ = ["build_pair", "cycle_positions", "analyse_torque", "BevelPlan", "BevelRun", "plan", "execute"]
 
 FLANK = {"concave": "working", "convex": "coast"}
 
@@ -151,13 +150,3 @@ def execute(p: BevelPlan, progress=None, cache: str | None = None, store=None) -
         store.rewrite_log(lines)
         run.computed, run.taken_over = store.computed, store.taken_over
     return run
-
-
-def run_bevel_ltca(case_path: str, out: str = "out", positions: int | None = None, fidelity: str | None = None,
-                   torques: list[float] | None = None, progress: bool = True, cache: str | None = None,
-                   resume: bool = False) -> dict:
-    """``ltca run`` of a bevel case file into the run folder ``out`` (:func:`ltca.driver.run_to_dir`); returns the
-    summary as written."""
-    from ..driver import run_to_dir
-    return run_to_dir(case_path, out, fidelity=fidelity, positions=positions, progress=progress, cache=cache,
-                      torques=torques, resume=resume)

@@ -22,7 +22,7 @@ from geometry.bevel.tca import ContactError
 from ..validation import DesignError
 from .case import load_bevel_case
 
-__all__ = ["run_bevel_tca", "plot_bevel", "bevel_benchmark", "print_run"]
+__all__ = ["run_bevel_tca", "plot_bevel", "bevel_benchmark"]
 
 
 def _settings(cut: MemberCut) -> dict:
@@ -248,22 +248,3 @@ def bevel_benchmark(repeat: int = 3, case_path: str | None = None) -> dict:
     med = {k: float(np.median(v)) for k, v in times.items()}
     print(f"spiral bevel benchmark (median of {repeat}): " + ", ".join(f"{k} {v:.2f} s" for k, v in med.items()))
     return med
-
-
-def print_run(result, head: dict) -> None:
-    """The console table of ``ltca run`` of a bevel case."""
-    p = result._state.plan
-    asm = p.asm
-    print(f"Spiral bevel LTCA: {result.case.name} ({p.fid.name}, {p.positions} positions per cycle, assembly "
-          f"E {asm.E:g} P {asm.P:g} G {asm.G:g} mm)")
-    print(f"{'torque N m':>10s} {'flank':8s} {'TE p-p loaded':>13s} {'unloaded':>9s} {'p flank MPa':>11s} "
-          f"{'p max MPa':>10s} {'max share':>9s} {'root MPa':>9s} {'k N/um':>7s}  edges")
-    for t in head["torques"]:
-        print(f"{t['torque_nm']:10g} {t['flank']:8s} {t['te_loaded_ptp_arcsec']:13.2f} "
-              f"{t['te_unloaded_ptp_arcsec']:9.2f} {t['max_flank_pressure_mpa']:11.0f} "
-              f"{t['max_contact_pressure_mpa']:10.0f} {t['max_pair_share']:9.3f} "
-              f"{t['max_root_stress_mpa']['pinion']:9.0f} {t['mesh_stiffness_mean_n_per_um']:7.0f}  "
-              f"{', '.join(t['edge_locations']) or '-'}")
-    print("TE in arcsec (positive: the gear lags); p flank: peak pressure away from the flank edges (its "
-          "convergence: ltca convergence); p max: with the edge cells (singular at a sharp edge, grows as the "
-          "cells shrink)")

@@ -1,11 +1,7 @@
-"""The cylindrical commands ``ltca run`` and ``ltca tca``: a case file in, a run folder and the console tables out.
-
-The analysis itself is :func:`ltca.core.run` (:mod:`ltca.cylindrical.analysis`); this layer locks the folder,
-prints and saves.
-"""
+"""The cylindrical ``ltca tca``: the unloaded TCA of a case file, its table and plot; the position loop's names
+(:mod:`ltca.cylindrical.loop`) for scripts. ``ltca run`` is :mod:`ltca.driver`."""
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
@@ -17,47 +13,7 @@ from .loop import analyse, cycle_rolls
 from .model import build_model
 from .tca import unloaded_tca
 
-__all__ = ["run_case", "run_tca", "cycle_rolls", "analyse", "print_run"]
-
-
-def _say(enabled: bool):
-    def say(msg: str) -> None:
-        print(f"  {msg}", file=sys.stderr, flush=True)
-    return say if enabled else None
-
-
-def print_run(head: dict, dataset, name: str, n_pos: int, cycles: int, say=None) -> None:
-    """The console output of ``ltca run`` of a cylindrical case: edge contacts (``say``), the headline JSON and the
-    tables per torque and of the TE harmonics."""
-    from .sweep import harmonics_table, torque_table
-    if say is not None:
-        for rec in head["torques"]:
-            for e in rec.get("edge_contact", []):
-                say(f"  edge contact at {rec['torque_nm']:g} N m, {e['edge']} ({e['modelled_as']}): up to "
-                    f"{e['max_load_n']:.0f} N at {e['positions']} position(s), roll {min(e['roll_deg']):+.2f} .. "
-                    f"{max(e['roll_deg']):+.2f} deg, pinion diameter {e['pinion_diameter_mm'][0]:.2f} .. "
-                    f"{e['pinion_diameter_mm'][1]:.2f} mm, peak {e['max_pressure_mpa']:.0f} MPa"
-                    + (f" - MESH-DEPENDENT (not a flank pressure): {e['why']}" if e["mesh_dependent"] else ""))
-    print(json.dumps({k: head[k] for k in ("torque_nm", "te_loaded_ptp_arcsec", "te_unloaded_ptp_arcsec",
-                                           "max_flank_pressure_mpa", "max_flank_pressure_at", "edge_note",
-                                           "max_contact_pressure_mpa", "max_root_stress_mpa",
-                                           "mesh_stiffness_mean_n_per_mm_um", "max_pairs_in_contact",
-                                           "converged", "timings_s") if k in head}, indent=1))
-    print(f"{name}: {n_pos} positions per mesh cycle x {cycles} cycle(s), every torque:")
-    print(torque_table(head["torques"]))
-    print(harmonics_table(dataset))
-
-
-def run_case(case_path: str, out: str = "out", fidelity: str | None = None, positions: int | None = None,
-             progress: bool = True, cache: str | None = None, write: bool = True, resume: bool = False,
-             max_output_gb: float = 2.0, torques: list[float] | None = None, paraview_steps: int = 10) -> dict:
-    """``ltca run`` of a cylindrical case: the analysis (:func:`ltca.core.run`) into the run folder ``out``
-    (checked and locked before any FE work, status in run.json, files atomic, ``resume`` takes over the positions
-    an interrupted run finished), then the console tables. Returns the summary as written."""
-    from ..driver import run_to_dir
-    return run_to_dir(case_path, out, fidelity=fidelity, positions=positions, progress=progress, cache=cache,
-                      write=write, resume=resume, max_output_gb=max_output_gb, torques=torques,
-                      paraview_steps=paraview_steps)
+__all__ = ["run_tca", "cycle_rolls", "analyse"]
 
 
 def run_tca(case_path: str, out: str | None = None, positions: int | None = None) -> dict:

@@ -58,7 +58,7 @@ def _full_run(path: Path, out: Path, backend) -> dict:
     """``ltca run`` of a design's case file (compliance computed afresh), its console output kept out."""
     if hasattr(backend, "full_run"):
         return backend.full_run(path, out)
-    from ..cylindrical.run import run_case
+    from ..driver import run_to_dir as run_case
     with contextlib.redirect_stdout(io.StringIO()):
         head = run_case(str(path), out=str(out), fidelity=backend.fidelity, positions=backend.positions,
                         progress=False)

@@ -25,8 +25,8 @@ from .loaded import positions, prepare_satellite, solve_cycle
 from .model import build_satellite_model
 from .report import out_dir, plot_gaps, plot_load_sharing, print_table, write_csv
 
-__all__ = ["SHARE_MIN", "run_forming", "run_planetary_tca", "run_planetary", "summarise", "plan", "execute",
-           "print_run", "write_files", "PlanetaryPlan", "PlanetaryRun"]
+__all__ = ["SHARE_MIN", "ROW_KEYS", "run_forming", "run_planetary_tca", "summarise", "plan", "execute", "write_files",
+           "PlanetaryPlan", "PlanetaryRun"]
 
 SHARE_MIN = 1e-3
 
@@ -203,14 +203,6 @@ ROW_KEYS = ["direction", "percent_of_rated", "torque_nm", "pairs_min", "pairs_ma
             "root_stress_wheel_mpa", "torque_residual"]
 
 
-def print_run(result, head: dict) -> None:
-    """The console table of ``ltca run`` of a planetary case (both directions per torque)."""
-    print_table([{k: (({p: round(v, 3) for p, v in r[k].items() if v >= SHARE_MIN}) if k == "mean_share" else r[k])
-                  for k in ROW_KEYS} for r in head["results"]], ROW_KEYS)
-    t = head["timings_s"]
-    print(f"timings: prepare {t['prepare']:.1f} s, contact {t['contact']:.1f} s, total {t['total']:.1f} s")
-
-
 def write_files(run: PlanetaryRun, d: Path, ds) -> None:
     """results.nc, load_sharing.csv, torques.csv and load_sharing.png of a planetary run into the folder ``d``."""
     from ..outputs import write_bytes_atomic
@@ -223,12 +215,3 @@ def write_files(run: PlanetaryRun, d: Path, ds) -> None:
     write_csv(d / "torques.csv", [{k: (json.dumps(r[k]) if isinstance(r[k], (dict, list)) else r[k])
                                    for k in ROW_KEYS} for r in rows])
     plot_load_sharing(d / "load_sharing.png", run.plot)
-
-
-def run_planetary(case_path, out="out", fidelity=None, n_positions=None, progress=True, cache=None,
-                  torques_nm=None) -> dict:
-    """``ltca run`` of a planetary case file into the run folder ``out`` (:func:`ltca.driver.run_to_dir`); returns
-    the summary as written (``out=None``: nothing written)."""
-    from ..driver import run_to_dir
-    return run_to_dir(case_path, out or "out", fidelity=fidelity, positions=n_positions, progress=progress,
-                      cache=cache, torques=torques_nm, write=out is not None)

@@ -4,9 +4,9 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..cases import Case
-from ..core import Analysis, figures_from
+from ..cylindrical import analysis
 from ..results import LoadedResult
-from . import analysis
+from . import Analysis, figures_from
 
 __all__ = ["ANALYSIS"]
 
@@ -21,11 +21,11 @@ def _result(case: Case, run: analysis.CylindricalRun) -> LoadedResult:
         head = {**head, "positions_computed": run.computed, "positions_taken_over": run.taken_over}
     return LoadedResult(case=case, dataset=run.dataset, summary=head,
                         figures=tuple(figures_from(r) for r in head["torques"]), timings=dict(head["timings_s"]),
-                        _state=run)
+                        _state=run, _writer=_write)
 
 
 def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
-    from .save import write_outputs
+    from ..cylindrical.save import write_outputs
     write_outputs(result._state, head, stage, case_file, report=report, paraview_steps=paraview_steps)
 
 

@@ -12,10 +12,10 @@ import numpy as np
 import xarray as xr
 
 from ..cases import Case
-from ..core import Analysis, figures_from
 from ..cylindrical.tca import ARCSEC_PER_RAD
+from ..planetary import run as prun
 from ..results import LoadedResult
-from . import run as prun
+from . import Analysis, figures_from
 
 __all__ = ["ANALYSIS", "planetary_dataset"]
 
@@ -79,7 +79,7 @@ def _result(case: Case, run: prun.PlanetaryRun) -> LoadedResult:
     head["converged"] = all(r["converged"] for r in records)
     head["max_torque_residual"] = max(r["max_torque_residual"] for r in records)
     return LoadedResult(case=case, dataset=ds, summary=head, figures=tuple(figures_from(r) for r in records),
-                        timings=dict(run.timings), _state=run)
+                        timings=dict(run.timings), _state=run, _writer=_write)
 
 
 def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):

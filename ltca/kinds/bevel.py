@@ -3,10 +3,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..bevel import analysis
 from ..cases import Case
-from ..core import Analysis, figures_from
 from ..results import LoadedResult
-from . import analysis
+from . import Analysis, figures_from
 
 __all__ = ["ANALYSIS"]
 
@@ -16,18 +16,18 @@ def _plan(case: Case, fidelity, positions, torques_nm, max_output_gb):
 
 
 def _result(case: Case, run: analysis.BevelRun) -> LoadedResult:
-    from .results import bevel_dataset
+    from ..bevel.results import bevel_dataset
     p = run.plan
     ds, head, plotdata = bevel_dataset(p.case, run.pair, p.asm, p.fid, run.runs, p.torques_nm, run.timings)
     if run.computed or run.taken_over:
         head.update(positions_computed=run.computed, positions_taken_over=run.taken_over)
     run.plotdata = plotdata
     return LoadedResult(case=case, dataset=ds, summary=head, figures=tuple(figures_from(r) for r in head["torques"]),
-                        timings=dict(run.timings), _state=run)
+                        timings=dict(run.timings), _state=run, _writer=_write)
 
 
 def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
-    from .results import write_files
+    from ..bevel.results import write_files
     run = result._state
     head["plots"] = write_files(stage, run.plan.case, run.pair, result.dataset, run.plotdata, run.runs,
                                 run.plan.torques_nm)
