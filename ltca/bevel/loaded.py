@@ -18,10 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.contact import ContactNotConverged, solve_contact
 from fem.halfspace import surface_influence
 
-from ..errors import ConvergenceError
+from ..position import cell_compliance, root_stresses, solve_rounds
 from .cells import PairCells, cells_of, pair_hertz, pair_minima
 from .loaded_model import LOADED, BevelLoadedModel, body_t
 
@@ -131,14 +130,17 @@ def _solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: floa
     use = [m for m in mins
            if m is first or (m.g - g_min) * m.v2 <= 5.0 * pair_hertz(lm, m, T2)[0].delta + 3.0 * abs(bend)]
     widen: dict[int, float] = {}
-    for _ in range(len(mins) + 6):
+
+    def assemble():
         cells = [c for c in cells_of(lm, phi1, use, T2, widen) if len(c.t)]
-        sy = _system(lm, cells)
-        try:
-            sol = solve_contact(sy["C"], (sy["g"] - sy["gm"]) * sy["v2"], sy["v2"], T2, tol=tol)
-        except ContactNotConverged as exc:
-            raise ConvergenceError(f"bevel contact at phi1 = {phi1:.5f} rad, pinion torque {torque1 / 1e3:.4g} N m: "
-                                   f"{exc}") from None
+        return cells, _system(lm, cells)
+
+    def solve_args(x):
+        sy = x[1]
+        return sy["C"], (sy["g"] - sy["gm"]) * sy["v2"], sy["v2"], T2, None
+
+    def grow(x, sol) -> bool:
+        cells, sy = x
         more = [m for m in mins if m not in use and m.g < sy["gm"] + sol.approach]
         # a pair whose loaded cells reach its window's rim on the flank gets a wider window
         i0, grown = 0, False
@@ -149,8 +151,13 @@ def _solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: floa
                 widen[c.j] = widen.get(c.j, 1.0) * 1.8
                 grown = True
         if not more and not grown:
-            break
-        use += more
+            return False
+        use.extend(more)
+        return True
+
+    (cells, sy), sol = solve_rounds(assemble, solve_args, grow, len(mins) + 6,
+                                    f"bevel contact at phi1 = {phi1:.5f} rad, pinion torque {torque1 / 1e3:.4g} N m",
+                                    tol=tol)
     gm, pair, v2, v1, area = sy["gm"], sy["pair"], sy["v2"], sy["v1"], sy["area"]
     g0 = (sy["g"] - gm) * v2
     W1, W2 = sy["W1"], sy["W2"]
@@ -164,7 +171,7 @@ def _solve_position(lm: BevelLoadedModel, phi1: float, torque1: float, tol: floa
         pair, sy["t"], sy["L"], cat("L1"), cat("Rn1"), cat("L2"), cat("Rn2"), np.concatenate([c.xi for c in cells]),
         np.concatenate([c.eta for c in cells]), cat("r1"), area, F, F / area, g0, edge,
         np.concatenate([c.edge_dist for c in cells]), shares,
-        b1.root_max(W1.T @ F), b2.root_max(W2.T @ F), ellipse, abs(F @ v2 - T2) / T2, float(F @ v1 / torque1),
+        *root_stresses(b1, W1, b2, W2, F), ellipse, abs(F @ v2 - T2) / T2, float(F @ v1 / torque1),
         sol.iterations, sol.residual)
 
 
@@ -177,18 +184,14 @@ def _system(lm: BevelLoadedModel, cells: list[PairCells]) -> dict:
                area=np.concatenate([np.full(len(c.t), c.dxi * c.deta) for c in cells]))
     out["gm"] = float(out["g"].min())
     W1, W2 = _cell_weights(lm, cells)
-    b1, b2 = lm.bodies.body1, lm.bodies.body2
-    C = np.asarray(W1 @ (W1 @ b1.C).T) + np.asarray(W2 @ (W2 @ b2.C).T)
-    E, nu = lm.bodies.young, lm.bodies.poisson
-    i0 = 0
-    for c in cells:
-        k = len(c.t)
-        if lm.fid.near_field:
-            C[i0:i0 + k, i0:i0 + k] += _near_field(c, E, nu)
-        i0 += k
-    if not lm.fid.near_field:       # the coarse FE alone is (nearly) singular at sub-element spacing
-        C[np.diag_indices(len(C))] += 1e-6 * np.mean(np.diag(C))
-    out.update(C=0.5 * (C + C.T), W1=W1, W2=W2)
+    blocks = None
+    if lm.fid.near_field:
+        E, nu = lm.bodies.young, lm.bodies.poisson
+        blocks, i0 = [], 0
+        for c in cells:
+            blocks.append((np.arange(i0, i0 + len(c.t)), _near_field(c, E, nu)))
+            i0 += len(c.t)
+    out.update(C=cell_compliance(lm.bodies.body1, W1, lm.bodies.body2, W2, blocks), W1=W1, W2=W2)
     return out
 
 

@@ -17,6 +17,7 @@ import numpy as np
 
 from geometry.cylindrical import arc_length
 
+from ..position import cell_compliance
 from .cell_clip import (MIN_FRACTION, bounding_edges, clip_to_gear_flank, clip_to_pinion_flank,
                         gear_tip_on_pinion)
 from .flank_lattice import line_lattice
@@ -230,14 +231,14 @@ def contact_system(lm: LoadedModel, phi1: float, strips, dz: float, ds: float, c
     area = ds * length * frac
     W1 = lm.body1.weights(tooth, s, z)
     W2 = lm.body2.weights(gt, gs, gz)
-    C = np.asarray(W1 @ (W1 @ lm.body1.C).T) + np.asarray(W2 @ (W2 @ lm.body2.C).T)
+    blocks = None
     if fid.near_field:
         E, nu = model.case.young, model.case.poisson
+        blocks = []
         for k in np.unique(tooth):
             m = np.flatnonzero(tooth == k)
-            C[np.ix_(m, m)] += near_field_block(lat[m], sl[m], ds, lattice[int(k)].length, E, nu, frac[m], shift[m])
-    else:   # the coarse FE alone is (nearly) singular at sub-element spacing: a trace of regularisation
-        C[np.diag_indices(n)] += 1e-6 * np.mean(np.diag(C))
+            blocks.append((m, near_field_block(lat[m], sl[m], ds, lattice[int(k)].length, E, nu, frac[m], shift[m])))
+    C = cell_compliance(lm.body1, W1, lm.body2, W2, blocks)
     bound = np.concatenate([x.bound for x in strips])
     span = np.concatenate([x.span for x in strips])
-    return ContactSystem(tooth, sl, lat, s, z, g0, h1, h2, gt, gs, gz, area, 0.5 * (C + C.T), W1, W2, bound, span)
+    return ContactSystem(tooth, sl, lat, s, z, g0, h1, h2, gt, gs, gz, area, C, W1, W2, bound, span)

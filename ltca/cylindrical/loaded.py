@@ -15,9 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from fem.compliance import BodyCompliance
-from fem.contact import ContactNotConverged, solve_contact
 
 from ..errors import ConvergenceError
+from ..position import root_stresses, solve_rounds
 from .contact_cells import contact_strips, contact_system
 from .loaded_model import LoadedModel
 from .tca import ARCSEC_PER_RAD, first_contact
@@ -73,40 +73,46 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
     rb1 = model.pinion.r_base
     theta_guess = warm.theta if warm is not None else torque / (rb1 ** 2 * 14.0e3 * model.face_width)
     widen: dict = {}
-    for _ in range(max_widen + 1):
-        strips, dz, ds, lattice = contact_strips(lm, phi1, theta_guess, widen, torque, cycle)
+    state = {"theta": theta_guess}
+
+    def assemble():
+        strips, dz, ds, lattice = contact_strips(lm, phi1, state["theta"], widen, torque, cycle)
         if not strips:
             raise ConvergenceError("contact search", float("inf"), 0,
                                    "no tooth pair comes near contact: check the centre distance and the positions")
-        sy = contact_system(lm, phi1, strips, dz, ds, cycle, lattice)
+        return strips, ds, contact_system(lm, phi1, strips, dz, ds, cycle, lattice)
+
+    def solve_args(x):
+        sy = x[2]
         ok = np.isfinite(sy.gap0) & (sy.lever1 > 0)
         active0 = ok & _carried_over(warm, sy, roll, model.pitch_angle)
         if not active0.any():
-            active0 = ok & (sy.gap0 - sy.lever1 * theta_guess < 0)
-        try:
-            sol = solve_contact(sy.C, np.where(ok, sy.gap0, np.inf), np.where(ok, sy.lever1, 1.0), torque,
-                                active0=active0 if active0.any() else None)
-        except ContactNotConverged as exc:
-            raise ConvergenceError(f"contact at roll {np.degrees(roll):.3f} deg", exc.residual, exc.iterations,
-                                   exc.advice) from None
-        F = sol.force
-        theta_guess = sol.approach
+            active0 = ok & (sy.gap0 - sy.lever1 * state["theta"] < 0)
+        return (sy.C, np.where(ok, sy.gap0, np.inf), np.where(ok, sy.lever1, 1.0), torque,
+                active0 if active0.any() else None)
+
+    def grow(x, sol) -> bool:
+        strips = x[0]
+        state["theta"] = sol.approach
         more, i0 = False, 0
         for st in strips:
-            f = F[i0:i0 + len(st.s)]
+            f = sol.force[i0:i0 + len(st.s)]
             if (st.open_lo and f[0] > 1e-9 * torque / rb1) or (st.open_hi and f[-1] > 1e-9 * torque / rb1):
                 widen[(st.tooth, st.slice)] = widen.get((st.tooth, st.slice), 1.0) * 1.7
                 more = True
             i0 += len(st.s)
-        if not more:
-            break
+        return more
+
+    (strips, ds, sy), sol = solve_rounds(assemble, solve_args, grow, max_widen + 1,
+                                         f"contact at roll {np.degrees(roll):.3f} deg")
+    F = sol.force
     T1, T2 = float(F @ sy.lever1), float(F @ sy.lever2)
     theta0 = float(first_contact(model, phi1, lm.teeth1, cycle=cycle))
     return PositionResult(
         float(roll + cycle * model.pitch_angle), float(sol.approach), theta0, sy.tooth, sy.lattice, sy.slice, sy.s,
         sy.z, sy.area, F, F / sy.area, sy.gap0, sy.gear_tooth, sy.gear_s, sy.gear_z,
         {int(k): float(F[sy.tooth == k].sum()) for k in lm.teeth1},
-        lm.body1.root_max(sy.W1.T @ F), lm.body2.root_max(sy.W2.T @ F), abs(T1 - torque) / torque,
+        *root_stresses(lm.body1, sy.W1, lm.body2, sy.W2, F), abs(T1 - torque) / torque,
         T2 / T1 if T1 else np.nan, sol.iterations, sol.residual, sol.active, ds, sy.bound, sy.span)
 
 
