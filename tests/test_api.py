@@ -110,3 +110,17 @@ def test_bad_run_settings_are_refused_before_work():
             ltca.run(case, **kw)
     with pytest.raises(CaseError, match="--torque"):
         ltca.run(ltca.load_case("spiral_bevel_cao2008"), torques_nm=[0.0])
+
+
+def test_readme_python_example_runs_as_written(svg_backend, capfd):
+    """The README's five lines, executed as they stand (the plot goes to a new Figure, not a window)."""
+    import re
+    from pathlib import Path
+    text = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    code = re.search(r"## Five lines of Python\n\n```python\n(.*?)```", text, re.S).group(1)
+    assert len(code.strip().splitlines()) == 5
+    scope: dict = {}
+    exec(compile(code, "README.md", "exec"), scope)
+    out = capfd.readouterr().out.split()
+    assert len(out) == 2 and float(out[0]) > 0 and float(out[1]) > 500     # TE ptp (arcsec), flank peak (MPa)
+    assert scope["ax"].lines and matplotlib.get_backend() == svg_backend

@@ -6,7 +6,7 @@ import argparse
 import re
 from pathlib import Path
 
-README = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+README = (Path(__file__).resolve().parent.parent / "docs" / "guide" / "commands.md").read_text(encoding="utf-8")
 
 
 def _helps():

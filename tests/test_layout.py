@@ -213,3 +213,39 @@ def test_every_package_says_what_it_holds():
     missing = [m for m, (path, is_pkg) in _modules().items()
                if is_pkg and not ast.get_docstring(ast.parse(path.read_text()))]
     assert not missing, f"packages without a docstring: {missing}"
+
+
+#: the command layer: the only modules that print (the console of a command); everything else is library
+COMMAND_MODULES = {
+    "ltca.cli", "ltca.console", "ltca.driver", "ltca.cylindrical.run", "ltca.bevel.run", "ltca.planetary.run",
+    "ltca.planetary.report", "ltca.drivetrain.budget", "ltca.drivetrain.chain", "ltca.design.driver",
+    "ltca.design.bevel_torque", "ltca.study.runner",
+}
+
+
+def _calls(path: Path, name: str, attr: str | None = None) -> list[int]:
+    """Lines of calls to ``name(...)`` (or ``name.attr(...)``) in a module."""
+    out = []
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Call):
+            f = node.func
+            if attr is None and isinstance(f, ast.Name) and f.id == name:
+                out.append(node.lineno)
+            elif attr is not None and isinstance(f, ast.Attribute) and f.attr == attr and \
+                    isinstance(f.value, ast.Name) and f.value.id == name:
+                out.append(node.lineno)
+    return out
+
+
+def test_library_modules_neither_print_nor_pick_a_backend():
+    """Only the command layer prints; only the command line picks a matplotlib backend."""
+    printing, backend = [], []
+    for mod, (path, _) in _modules().items():
+        if mod.split(".")[0] not in PACKAGES or mod.startswith("ltca.verify"):
+            continue
+        if mod not in COMMAND_MODULES and _calls(path, "print"):
+            printing.append(f"{mod}: lines {_calls(path, 'print')}")
+        if mod != "ltca.cli" and _calls(path, "matplotlib", "use"):
+            backend.append(mod)
+    assert not printing, "print() in library modules:\n" + "\n".join(printing)
+    assert not backend, f"matplotlib.use() outside ltca.cli: {backend}"

@@ -205,13 +205,13 @@ def test_a_killed_client_reruns_only_what_is_missing(tmp_path):
 
 
 def test_readme_example_runs(tmp_path, monkeypatch):
-    """The "Studies" example of README.md, run as it stands (its output directory moved to tmp_path)."""
-    text = (ROOT / "README.md").read_text()
-    section = text[text.index("## Studies"):]
+    """The example of docs/guide/studies.md, run as it stands (its output directory moved to tmp_path)."""
+    text = (ROOT / "docs" / "guide" / "studies.md").read_text()
+    section = text
     code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
     monkeypatch.chdir(ROOT)
     code = code.replace('"out/study_example"', repr(str(tmp_path / "example")))
-    exec(compile(code, "README.md", "exec"), {})
+    exec(compile(code, "studies.md", "exec"), {})
     assert (tmp_path / "example" / "study.nc").is_file()
 
 
