@@ -10,7 +10,7 @@ One factorisation serves many right-hand sides (the compliance of a gear body is
 - ``"cholmod"``: scikit-sparse CHOLMOD (supernodal Cholesky), when importable.
 - ``"splu"``: scipy SuperLU; always available, far slower beyond ~50k dofs.
 
-Measured on the 2-core machine: see DESIGN.md, "Measured on this machine".
+Measured on the 2-core machine: see docs/design.md, "Measurements".
 
 Back-substitution cost (FZG C14 pinion body: 63k free dofs, 216 patch loads, 1476 observed rows;
 2 shared cores, medians of 3):

@@ -1,9 +1,8 @@
 """Backlash curve from double-flank (drive and coast) unloaded TE, and the loaded TE curves.
 
-Source: Wang Guangjian et al., Chinese Journal of Engineering, p. 1061 (seed 003,
-shared/seeds/003_*.txt): the continuous backlash curve is the coast-side (back-side) TE minus the
-drive-side TE, both *unloaded*; under load the two curves shift by the drive-train deformation
-delta_k (Eq. 20-21)::
+Source: Wang Guangjian et al., Chinese Journal of Engineering, p. 1061 (seed 003): the continuous
+backlash curve is the coast-side (back-side) TE minus the drive-side TE, both *unloaded*; under load the
+two curves shift by the drive-train deformation delta_k (Eq. 20-21)::
 
     dphi_d^F = dphi_d - delta_k        (20)
     dphi_b^F = dphi_b + delta_k        (21)

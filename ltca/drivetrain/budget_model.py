@@ -8,7 +8,7 @@ the reference shaft under load) is Wang et al., Eq. (19)::
 
 with k_i the (secant) torsional stiffness of gear mesh, shaft, ball spline and coupling at the load T.
 
-Source: Wang Guangjian et al., Chinese Journal of Engineering, p. 1061 (seed 003, shared/seeds/003_*.txt),
+Source: Wang Guangjian et al., Chinese Journal of Engineering, p. 1061 (seed 003),
 Table 2 (stiffnesses) and Table 3 (deformations at 2.5, 5, 7.5, 10 N m).
 
 Member models (SI-consistent inside: N, mm, rad)

@@ -1,7 +1,7 @@
 """Transmission-ratio error of a machine's kinematic chains (seed 002) and its tooth errors.
 
 Source: Nguyen Tho Son, Nguyen Van Mui, Le Thanh Son, J. Science & Technology (HaUI) 56(4), 2020,
-pp. 48-52 (shared/seeds/002_*.txt), Gleason-system generator Modul ZFTKK250X5. Method (Sect. 3):
+pp. 48-52, Gleason-system generator Modul ZFTKK250X5. Method (Sect. 3):
 
 * n: revolutions of each element during one cycle (from the chain's kinematics);
 * zk = frac(n) z, the "odd teeth" passed beyond whole revolutions;
