@@ -27,7 +27,8 @@ def run_validate(out: str = "out/validate", progress: bool = True) -> int:
     from ..cylindrical.model import build_model
     from ..cylindrical.run import cycle_rolls
     from ..cylindrical.tca import unloaded_tca
-    root = Path(__file__).resolve().parent.parent.parent / "cases"
+    from ..shipped import cases_dir
+    root = cases_dir()
     rows = []
     t0 = time.perf_counter()
     case = load_case(root / "fzg_c14.toml")
