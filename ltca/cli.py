@@ -7,6 +7,7 @@ status 3 and its residual.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 
 from .errors import CaseError, ConvergenceError
@@ -400,12 +401,17 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _resolve_files(a: argparse.Namespace) -> None:
-    """A CASE or STUDY argument that is not a file: a shipped case or study of that name (:mod:`ltca.shipped`)."""
+    """A CASE or STUDY argument that is not a file but a shipped case's or study's name: that file
+    (:mod:`ltca.shipped`). Anything else stays as given: the command's reader names what is missing."""
+    from pathlib import Path
+
     from .shipped import study_path
-    if getattr(a, "case", None):
-        a.case = str(case_path(a.case))
-    if a.command == "study":
-        a.study = str(study_path(a.study))
+    if getattr(a, "case", None) and not Path(a.case).exists():
+        with contextlib.suppress(CaseError):
+            a.case = str(case_path(a.case))
+    if a.command == "study" and not Path(a.study).exists():
+        with contextlib.suppress(CaseError):
+            a.study = str(study_path(a.study))
 
 
 def main(argv: list[str] | None = None) -> int:
