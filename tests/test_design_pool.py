@@ -19,7 +19,8 @@ import scipy.sparse as sp
 
 from conftest import CASES
 
-#: seconds one repetition may take (worker start about 4 s and four candidates about 2 s on 2 cores)
+#: seconds one repetition may take (two workers start in about 4 s and evaluate in about 1 s on an idle 2-core
+#: machine; a deadlocked worker never returns)
 BOUND_S = 60.0
 VALUES = [{"tip_relief_um": x, "tip_relief_length_mm": 4.0} for x in (5.0, 30.0)]
 
