@@ -4,7 +4,7 @@ The body is the whole gear (:mod:`fem.solids.gear_body`: the 360 deg rim, web an
 can touch and one neighbour each side meshed finely, held at the bore as on a rigid shaft, or at the rim
 of an internal gear as in a rigid housing); it is meshed once, factorised once, and loaded by a unit normal force spread over a small patch around
 each node of a coarse grid on the loaded flanks. The coarse FE cannot resolve the contact's local
-deformation, so the compliance is split (DESIGN.md "Near field", after Vijayakar, IJNME 31 (1991)):
+deformation, so the compliance is split (docs/design.md, "Near field", after Vijayakar, IJNME 31 (1991)):
 
     C_ij = R_ij + C_HS(cell j -> x_i),
     R = 2 R(d) - R(2d),   R(d)_ij = C_FE(patch j -> x_i - d n_i) - C_HS(patch j -> x_i - d n_i).

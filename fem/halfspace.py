@@ -1,7 +1,7 @@
 """Elastic half-space influence coefficients of uniformly loaded rectangular cells.
 
 The near field of the gear-flank compliance is taken from the Boussinesq / Love solution of a linear
-elastic half-space (Vijayakar 1991 idea, see DESIGN.md): a contact cell is a rectangle of half sizes
+elastic half-space (Vijayakar 1991 idea, see docs/design.md): a contact cell is a rectangle of half sizes
 ``a`` (profile direction, local x) and ``b`` (face direction, local y) carrying a total force of 1 N
 as the uniform pressure ``1 / (4 a b)``.
 
@@ -215,6 +215,6 @@ def near_field_correction(xs, centres, half, depth, E: float, nu: float) -> np.n
     -------
     ndarray, shape (n, m)
         ``surface_influence - subsurface_influence``, mm/N: the term C_HS(j -> x_i) - C_HS(j -> y_i)
-        of the corrected compliance (DESIGN.md, near field).
+        of the corrected compliance (docs/design.md, near field).
     """
     return _pairwise(xs, centres, half, depth, E, nu, "correction")

@@ -10,6 +10,8 @@ One factorisation serves many right-hand sides (the compliance of a gear body is
 - ``"cholmod"``: scikit-sparse CHOLMOD (supernodal Cholesky), when importable.
 - ``"splu"``: scipy SuperLU; always available, far slower beyond ~50k dofs.
 
+Measured on the 2-core machine: see docs/design.md, "Measurements".
+
 Back-substitution (FZG C14 pinion body: 63k free dofs, 216 patch loads, 1476 observed rows):
 
 - MKL's default ``iparm(8) = 2`` (which pypardiso inherits) runs two steps of iterative refinement

@@ -7,9 +7,11 @@ status 3 and its residual.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 
 from .errors import CaseError, ConvergenceError
+from .shipped import case_path
 
 __all__ = ["main", "build_parser"]
 
@@ -77,7 +79,7 @@ def _cmd_validate(a: argparse.Namespace) -> int:
     if a.reference == "analytic" and a.case and _is_bevel(a.case):
         from .verify.bevel_check import run_bevel_validate
         return run_bevel_validate(a.case, a.out, progress=not a.quiet)
-    a.case = a.case or "cases/fzg_c14.toml"
+    a.case = a.case or str(case_path("fzg_c14"))
     if a.reference == "calculix" and _is_bevel(a.case):
         if a.torque is not None and not 0 < a.torque <= 1e5:
             raise CaseError("--torque", a.torque, "one pinion torque in (0, 1e5] N m")
@@ -222,7 +224,7 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Loaded tooth contact analysis of a case over one mesh cycle. Writes "
                                    "summary.json, results.nc, PNG plots, report.html (one self-contained page), "
                                    "a VTU and the ParaView series paraview.pvd into --out.")
-    r.add_argument("case", help="case file (.toml)")
+    r.add_argument("case", help="case file (.toml) or a shipped case's name, e.g. fzg_c14")
     r.add_argument("--out", default="out", help="output directory (default: out)")
     r.add_argument("--fidelity", choices=["coarse", "default", "fine"], help="override the case's fidelity")
     r.add_argument("--positions", type=_positions, help="mesh positions per cycle (override, at most 2000)")
@@ -256,7 +258,7 @@ def build_parser() -> argparse.ArgumentParser:
                                    "candidate a loaded analysis on a compliance computed once. Writes design.json, "
                                    "history.jsonl, settings.csv, the optimum's case file and LTCA outputs, the "
                                    "Harris map and the objective map into --out.")
-    o.add_argument("case", help="case file (.toml) with a [design] table")
+    o.add_argument("case", help="case file (.toml) with a [design] table, or a shipped case's name")
     o.add_argument("--out", default="out/optimise", help="output directory (default: out/optimise)")
     o.add_argument("--resume", action="store_true",
                    help="take over the candidates an interrupted run on the same --out finished; go on from there")
@@ -271,7 +273,7 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Unloaded TCA: separation field, contact path, unloaded TE, contact ratio. "
                                    "A case with a [bevel] table: spiral bevel pinion synthesis from eta2 and m21 "
                                    "and the TCA of both flanks, with a Gleason-style settings summary.")
-    t.add_argument("case", help="case file (.toml): cylindrical, [bevel] or [satellite]")
+    t.add_argument("case", help="case file (.toml): cylindrical, [bevel] or [satellite]; or a shipped case's name")
     t.add_argument("--out", default=None, help="output directory for summary.json and plots")
     t.add_argument("--positions", type=_positions, help="mesh positions per cycle (override, at most 2000)")
     t.set_defaults(func=_cmd_tca)
@@ -280,7 +282,7 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Runs every variant of a study file at every torque on a Dask cluster: one "
                                    "compliance per geometry, each point written as it finishes (a rerun skips "
                                    "them). Writes study.nc, summary.csv, plots and run.json into --out.")
-    s.add_argument("study", help="study file (.toml)")
+    s.add_argument("study", help="study file (.toml) or a shipped study's name, e.g. fzg_torque_misalignment")
     s.add_argument("--out", default="out/study", help="output directory (default: out/study)")
     s.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="address of a running Dask scheduler, e.g. tcp://127.0.0.1:8786 (default: a LocalCluster)")
@@ -295,7 +297,7 @@ def build_parser() -> argparse.ArgumentParser:
                                    "the disk cutter and the special hob; prints thickness against Eq. 3, tip land, "
                                    "dedendum, fillet and the deviation from the special hob; writes forming.csv and "
                                    "forming.png into --out.")
-    f.add_argument("case", help="case file (.toml) with a [satellite] table")
+    f.add_argument("case", help="case file (.toml) with a [satellite] table, or a shipped case's name")
     f.add_argument("--out", default=None, help="output directory for forming.csv and forming.png")
     f.set_defaults(func=_cmd_forming)
 
@@ -303,7 +305,7 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Runs a ladder of fidelities (flank element size, contact grid, near-field "
                                    "correction on/off) and prints wall time against the error in loaded TE, "
                                    "peak pressure and root stress relative to the finest.")
-    c.add_argument("case", help="case file (.toml)")
+    c.add_argument("case", help="case file (.toml) or a shipped case's name")
     c.add_argument("--out", default="out/convergence", help="output directory (default: out/convergence)")
     c.add_argument("--positions", type=_positions, default=8, help="mesh positions per cycle (default 8)")
     c.add_argument("--quiet", action="store_true", help="no progress output")
@@ -364,7 +366,7 @@ def build_parser() -> argparse.ArgumentParser:
     be = sub.add_parser("bench", help="cold wall time of an analysis (median of runs) beside its Hertz error",
                         description="Runs the case cold several times and prints the median time per stage and "
                                     "the pitch-point error against Hertz.")
-    be.add_argument("case", help="case file (.toml)")
+    be.add_argument("case", help="case file (.toml) or a shipped case's name")
     be.add_argument("--repeat", type=_positive_int, default=3, help="cold runs; the median is reported (default 3)")
     be.add_argument("--positions", type=_positions, help="mesh positions per cycle (default: the case's)")
     be.add_argument("--fidelity", choices=["coarse", "default", "fine"], help="override the case's fidelity")
@@ -372,16 +374,32 @@ def build_parser() -> argparse.ArgumentParser:
 
     b = sub.add_parser("budget", help="drive-train stiffness and backlash budget (Wang et al.)",
                        description="Torsional deflection of a drive train of members in series, per torque.")
-    b.add_argument("case", help="budget case file (.toml) with [budget] and [[member]] tables")
+    b.add_argument("case", help="budget case file (.toml) with [budget] and [[member]] tables, or a shipped "
+                   "case's name")
     b.add_argument("--out", default=None, help="output directory for the CSV and plots (default: print only)")
     b.set_defaults(func=_cmd_budget)
 
     ch = sub.add_parser("chain", help="machine kinematic-chain ratio errors (indexing and generating chains)",
                         description="Ratio errors of indexing and generating chains and the tooth errors they make.")
-    ch.add_argument("case", help="chain case file (.toml) with [[chain]] and [workpiece] tables")
+    ch.add_argument("case", help="chain case file (.toml) with [[chain]] and [workpiece] tables, or a shipped "
+                    "case's name")
     ch.add_argument("--out", default=None, help="output directory for the CSV tables (default: print only)")
     ch.set_defaults(func=_cmd_chain)
     return p
+
+
+def _resolve_files(a: argparse.Namespace) -> None:
+    """A CASE or STUDY argument that is not a file but a shipped case's or study's name: that file
+    (:mod:`ltca.shipped`). Anything else stays as given: the command's reader names what is missing."""
+    from pathlib import Path
+
+    from .shipped import study_path
+    if getattr(a, "case", None) and not Path(a.case).exists():
+        with contextlib.suppress(CaseError):
+            a.case = str(case_path(a.case))
+    if a.command == "study" and not Path(a.study).exists():
+        with contextlib.suppress(CaseError):
+            a.study = str(study_path(a.study))
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -389,6 +407,7 @@ def main(argv: list[str] | None = None) -> int:
     matplotlib.use("Agg")       # the command line writes files; the library never picks a backend
     args = build_parser().parse_args(argv)
     try:
+        _resolve_files(args)
         return int(args.func(args) or 0)
     except CaseError as exc:
         print(f"ltca {args.command}: error: {exc}", file=sys.stderr)

@@ -246,7 +246,9 @@ def read_case_file(path: str | Path) -> dict:
     :data:`MAX_DEPTH` is a CaseError (exit status 2), never a traceback."""
     path = Path(path)
     if not path.is_file():
-        raise CaseError("CASE", str(path), "an existing case file (.toml)")
+        from .shipped import shipped_cases
+        raise CaseError("CASE", str(path), "an existing case file (.toml) or the name of a shipped case: "
+                        + ", ".join(shipped_cases()))
     size = path.stat().st_size
     if size > MAX_FILE_BYTES:
         raise CaseError("file", f"{size} bytes", f"a case file of at most {MAX_FILE_BYTES} bytes", str(path))

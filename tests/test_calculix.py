@@ -119,7 +119,7 @@ def test_narrowest_half_width_is_the_hertz_width(fzg_lm):
     from ltca.cylindrical.loaded import solve_position
     res = solve_position(fzg_lm, 0.0, fzg_lm.model.case.torques[0])
     b = narrowest_contact(res)[1]
-    assert abs(b - 0.1995) < res.ds          # shared/reference/hertz.md: 199.5 um at the pitch point
+    assert abs(b - 0.1995) < res.ds          # tests/reference/hertz.md: 199.5 um at the pitch point
 
 
 def test_focus_refines_only_its_window_of_the_contact_line(fzg_lm):

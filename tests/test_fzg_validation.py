@@ -1,4 +1,4 @@
-"""FZG C14 (shared/reference/fzg_c14.csv) against Hertz, ISO 6336-1 and kinematic identities."""
+"""FZG C14 (tests/reference/fzg_c14.csv, GEARpie REPORT/C14.txt) against Hertz, ISO 6336-1 and kinematic identities."""
 from __future__ import annotations
 
 import csv
@@ -22,7 +22,7 @@ def reference(quantity: str) -> float:
 
 
 def test_hertz_formula_reproduces_published_pitch_point_figures():
-    # shared/reference/hertz.md worked check: w = 422.29 N/mm, R = 8.3820 mm -> 1347.3 MPa, 199.5 um
+    # tests/reference/hertz.md worked check: w = 422.29 N/mm, R = 8.3820 mm -> 1347.3 MPa, 199.5 um
     b, p0 = hertz_line(reference("normal load in transverse plane F_bt") / 14.0, 8.3820, 206000, 0.3)
     assert p0 == pytest.approx(reference("Hertz peak pressure p0 at pitch point (single pair in contact)"), abs=0.1)
     assert 1e3 * b == pytest.approx(reference("Hertz half-width b at pitch point"), abs=0.1)
@@ -71,7 +71,7 @@ def test_single_pair_stiffness_in_iso_band(fzg_lm, fzg_case, fzg_model):
 
 
 def test_iso6336_constants_reproduce_hand_calculation(fzg_model):
-    # hand calculation with the shared/reference/iso6336_stiffness.md formula for z 16/24, x 0.1817/0.1715:
+    # hand calculation with the ISO 6336-1 formula (tests/reference/iso6336_stiffness.md) for z 16/24, x 0.1817/0.1715:
     # q' = 0.063387 mm um/N -> c'_th = 15.776, C_B = 0.975 (hfP = 1.25 m), c' = 0.8 * 0.975 * c'_th = 12.305
     cp, cth = iso6336_stiffness(fzg_model)
     assert cth == pytest.approx(15.776, abs=0.01)

@@ -2,7 +2,7 @@
 
 Identities: the mesh volume equals the section area times the face width (webbed: each region times its
 own width); corner nodes of a helical flank lie on the generated helicoid. What may be left out: the far
-teeth change the flank compliance by well under 1 % (measured here; the design rule of DESIGN.md).
+teeth change the flank compliance by well under 1 % (measured here; the design rule of docs/design.md).
 Physics (slow): a rigid shaft seat nearer the root stiffens the mesh (less disc torsion, a stiffer
 foundation); a web narrower than the face softens it by about ISO 6336-1's rim factor C_R.
 """
@@ -126,7 +126,7 @@ def test_read_fillets_are_meshed_at_h_fillet_and_nothing_else_changes(fzg_model)
 
 
 def test_far_teeth_change_the_flank_compliance_by_under_one_percent(fzg_model, tmp_path):
-    """The design choice 'far teeth left out' measured against the body with every tooth (DESIGN.md)."""
+    """The design choice 'far teeth left out' measured against the body with every tooth (docs/design.md)."""
     from fem.compliance import ComplianceSpec, body_compliance
     p = fzg_model.pinion
     base = ComplianceSpec(teeth=(-2, -1, 0, 1, 2), loaded=(-1, 0, 1), side=+1, r_range=fzg_model.pinion_range(),
@@ -225,7 +225,7 @@ def test_shaft_seat_and_web_trends(fzg_case, tmp_path):
                                          ("fzg_c14.toml", 30.0), ("fzg_c14.toml", 40.0)])
 def test_mean_mesh_stiffness_in_iso_band(name, bore1, tmp_path):
     """Solid-disc bodies on rigid shafts (FZG rig shafts 30-40 mm; the wide pair's bores half the reference
-    diameters): mean c_gamma between 0.8 c' and 1.2 c'_th of ISO 6336-1 (shared/reference/iso6336_stiffness.md)."""
+    diameters): mean c_gamma between 0.8 c' and 1.2 c'_th of ISO 6336-1 (tests/reference/iso6336_stiffness.md)."""
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
     from ltca.verify.validate import iso6336_stiffness

@@ -2,7 +2,7 @@
 
 Sources: Boussinesq point load, Johnson, *Contact Mechanics* (1985) eq. 3.21c; Timoshenko & Goodier,
 *Theory of Elasticity* (3rd ed., 1970) sec. 138 (uniformly loaded rectangle / square); Hertz formulas
-in shared/reference/hertz.md (Johnson 1985 eqs. 4.23, 4.45, 4.51).
+in tests/reference/hertz.md (Johnson 1985 eqs. 4.23, 4.45, 4.51).
 """
 import numpy as np
 import pytest

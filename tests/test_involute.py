@@ -64,7 +64,7 @@ def test_reference_thickness_helical():
 
 # ------------------------------------------------------------------------------- FZG C14
 def test_fzg_c14_radii_centre_distance_contact_ratio():
-    # /work/shared/reference/fzg_c14.csv (GEARpie REPORT/C14.txt)
+    # tests/reference/fzg_c14.csv (GEARpie REPORT/C14.txt)
     m, z1, z2, x1, x2 = 4.5, 16, 24, 0.1817, 0.1715
     rack = iso_rack(m)
     p1 = generate_by_rack(GearBlank(z1, m, A20, x=x1, d_tip=2 * 41.228), rack)

@@ -1,6 +1,6 @@
 """Numbers from outside the project, for the flagship pair.
 
-GEARpie (cfernandesFEUP/GEARpie, REPORT/C14.txt, via shared/reference/fzg_c14.csv): the rigid-load-sharing
+GEARpie (cfernandesFEUP/GEARpie, REPORT/C14.txt, via tests/reference/fzg_c14.csv): the rigid-load-sharing
 Hertz pressure along the path of contact peaks at the inner point of single contact B at p0 = 1447.5 MPa,
 where one pair carries the whole load. Under load an unmodified pair does not reach single contact at B:
 the deflection keeps the other pair touching at its tip edge a little longer (measured at 200 N m: the

@@ -221,7 +221,8 @@ def bevel_benchmark(repeat: int = 3, case_path: str | None = None) -> dict:
     from geometry.bevel.generation import generate_flank
     if not (isinstance(repeat, int) and repeat >= 1):
         raise ValueError(f"repeat = {repeat!r} is outside the allowed range [1, inf)")
-    path = case_path or str(Path(__file__).resolve().parents[2] / "cases" / "spiral_bevel_cao2008.toml")
+    from ..shipped import case_path as shipped_case
+    path = str(shipped_case(case_path or "spiral_bevel_cao2008"))
     case = load_bevel_case(path)
     bl = design_blank(case.basic)
     gear = standard_gear_cut(bl)

@@ -9,8 +9,8 @@
   (load at the tip, form and stress-correction factors measured on the generated outline by the 30 deg
   tangents, :func:`geometry.satellite.rating.root_section`), to set beside the fillet stress of the LTCA.
 
-References: ../shared/reference/fzg_c14.csv (F_bt = 5912.1 N, p0 = 1347.3 MPa, b = 199.5 um), hertz.md,
-iso6336_stiffness.md.
+References (tests/reference/): fzg_c14.csv, GEARpie REPORT/C14.txt (F_bt = 5912.1 N, p0 = 1347.3 MPa,
+b = 199.5 um), hertz.md, iso6336_stiffness.md.
 """
 from __future__ import annotations
 
@@ -106,7 +106,7 @@ def pitch_point_hertz(lm: LoadedModel, torque: float, cells_per_b: float = 10.0)
 
 
 def iso6336_stiffness(model: PairModel) -> tuple[float, float]:
-    """ISO 6336-1 Method B single stiffness: (c', c'_th) in N/(mm um) (shared/reference/iso6336_stiffness.md).
+    """ISO 6336-1 Method B single stiffness: (c', c'_th) in N/(mm um) (ISO 6336-1, Method B).
 
     C_M = 0.8, C_R = 1 (solid discs), C_B from the basic rack dedendum; virtual tooth numbers
     zn = z / (cos^2 beta_b cos beta); the internal gear's terms vanish (zn2 infinite)."""

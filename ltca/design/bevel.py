@@ -48,7 +48,7 @@ __all__ = ["BevelBackend", "SIDES"]
 
 
 def _pool_cycle(cuts: tuple, torque_nm: float, asm: Assembly | None) -> dict:
-    """A pool process's cycle: its copy of the backend forked with the pool (:func:`ltca.design.pool.forked_pool`)."""
+    """A pool process's cycle on its copy of the backend (:func:`ltca.design.pool.backend_pool`)."""
     return backend().worker_cycle(cuts, torque_nm, asm)
 
 #: flank name of the case -> pinion side it is cut on
@@ -95,7 +95,7 @@ class BevelBackend:
         self.bodies: dict = {}
         self._cuts: dict = {}
         self._start_targets: dict = {}
-        #: a process pool forked after :meth:`prepare` (it shares the bodies): a candidate's cycles run side by side
+        #: a process pool started after :meth:`prepare` (it shares the bodies): a candidate's cycles run side by side
         self.pool = None
         self._worker_pair: tuple = (None, None)
 

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import CaseError
 from .history import History
-from .pool import backend, forked_pool
+from .pool import backend, backend_pool
 from .problem import Evaluation
 from .schema import DesignSpec, parse_design
 
@@ -189,8 +189,8 @@ def optimise(case_path: str, out: str, resume: bool = False, progress: bool = Tr
                                                                    f" (infeasible, violation {e.violation:.3g})"))
                 return e
             return ev
-        with forked_pool(backend, workers) as pool:
-            # the pool is forked with the prepared backend; a backend that can runs a candidate's cycles in it
+        with backend_pool(backend, workers) as pool:
+            # the pool's workers hold the prepared backend; a backend that can runs a candidate's cycles in it
             backend.pool = pool
             try:
                 ev_base = evaluate("baseline")(base)

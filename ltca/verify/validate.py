@@ -1,7 +1,7 @@
 """Validation against references: Hertz at the pitch point, ISO 6336-1 stiffness, kinematic oracles.
 
 ``ltca validate`` runs these on the shipped cases and prints measured vs reference, error and time.
-References (../shared/reference/): fzg_c14.csv (geometry, F_bt = 5912.1 N, p0 = 1347.3 MPa,
+References (tests/reference/ of the repository): fzg_c14.csv (geometry, F_bt = 5912.1 N, p0 = 1347.3 MPa,
 b = 199.5 um), hertz.md (formulas), iso6336_stiffness.md (c', c'_th). The references themselves live in
 :mod:`ltca.cylindrical.iso6336` (``report.html`` shows them too) and are importable from here as before.
 """
@@ -27,7 +27,8 @@ def run_validate(out: str = "out/validate", progress: bool = True) -> int:
     from ..cylindrical.model import build_model
     from ..cylindrical.run import cycle_rolls
     from ..cylindrical.tca import unloaded_tca
-    root = Path(__file__).resolve().parent.parent.parent / "cases"
+    from ..shipped import cases_dir
+    root = cases_dir()
     rows = []
     t0 = time.perf_counter()
     case = load_case(root / "fzg_c14.toml")
