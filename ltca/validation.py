@@ -292,7 +292,8 @@ def check_value(spec, v: Any, path: str, file: str | None) -> Any:
 
 
 def check_table(raw: Any, spec: Table, path: str, file: str | None) -> dict:
-    """Validate ``raw`` against ``spec``; returns a dict with every field (defaults filled in)."""
+    """Validate ``raw`` against ``spec``; returns a dict with every field (defaults filled in) and the keys its
+    ``extra`` admits (as written, checked by their reader)."""
     label = path or "case file"
     if not isinstance(raw, dict):
         raise CaseError(label, raw, f"wrong type {type(raw).__name__}; a table", file)
@@ -313,6 +314,7 @@ def check_table(raw: Any, spec: Table, path: str, file: str | None) -> dict:
             out[k] = check_table({}, f, p, file) if fill else f.default
             continue
         out[k] = f.check(raw[k], p, file)
+    out.update((k, v) for k, v in raw.items() if k not in spec.fields)     # the extra keys, as written
     return out
 
 
