@@ -47,8 +47,13 @@ class DesignError(CaseError):
 
 
 def _fmt(x: float) -> str:
-    """A bound as an engineer writes it: 0.5, 200, 1e6, 1e-12."""
-    return re.sub(r"e([+-])0*(\d)", lambda m: "e" + ("-" if m.group(1) == "-" else "") + m.group(2), f"{x:g}")
+    """A bound as an engineer writes it: 0.5, 200, 5000, 1e5, 2e8, 1e-3 (a power of ten outside [0.01, 1e4) as
+    1eN)."""
+    if x and (abs(x) >= 1e4 or abs(x) < 1e-2):
+        e = round(math.log10(abs(x)))
+        if abs(x) == 10.0 ** e:
+            return f"{'-' if x < 0 else ''}1e{e}"
+    return re.sub(r"e([+-])0*(\d)", lambda m: "e" + m.group(1).replace("+", "") + m.group(2), f"{x:g}")
 
 
 # ------------------------------------------------------------------------------------------ field types #
@@ -227,7 +232,7 @@ class OneOrList:
 
     def words(self) -> str:
         return (f"{self.item.words()}, or a list of {self.min_len} to {self.max_len} "
-                f"{'distinct ' if self.distinct else ''}such numbers")
+                + ("distinct such numbers (one analysis each)" if self.distinct else "such numbers"))
 
     def check(self, v: Any, path: str, file: str | None) -> tuple:
         if not isinstance(v, list):
