@@ -47,12 +47,14 @@ class DesignError(CaseError):
 
 
 def _fmt(x: float) -> str:
-    """A bound as an engineer writes it: 0.5, 200, 5000, 1e5, 2e8, 1e-3 (a power of ten outside [0.01, 1e4) as
-    1eN)."""
+    """A bound as an engineer writes it: 0.5, 200, 5000, 1e5, 5e5, 2e8, 1e-3 (a power of ten outside [0.01, 1e4)
+    as 1eN, one significant digit from 1e5 up as 5e5)."""
     if x and (abs(x) >= 1e4 or abs(x) < 1e-2):
         e = round(math.log10(abs(x)))
         if abs(x) == 10.0 ** e:
             return f"{'-' if x < 0 else ''}1e{e}"
+    if abs(x) >= 1e5 and float(f"{x:.0e}") == x:
+        return re.sub(r"e\+0*", "e", f"{x:.0e}")
     return re.sub(r"e([+-])0*(\d)", lambda m: "e" + m.group(1).replace("+", "") + m.group(2), f"{x:g}")
 
 
@@ -352,8 +354,8 @@ def _row(table: str, key: str, f, array: bool, allowed_prefix: str = "") -> dict
 
 
 def _is_section(f) -> bool:
-    """A nested table documented as a section of its own (a free-form table is one row of its parent)."""
-    return isinstance(f, (TableList, Tagged)) or (isinstance(f, Table) and bool(f.fields))
+    """A nested table documented as a section of its own (a free-form table: one row ``*``)."""
+    return isinstance(f, (TableList, Tagged, Table))
 
 
 def table_reference(spec: Table, prefix: str = "", array: bool = False) -> list[dict]:
@@ -365,6 +367,9 @@ def table_reference(spec: Table, prefix: str = "", array: bool = False) -> list[
     union of its variants' keys, each key's ``allowed`` naming the variants it belongs to when not all."""
     rows: list[dict] = []
     subs: list[tuple[str, Any]] = []
+    if spec.extra is not None and prefix:          # a (partly) free-form table: its other keys are its reader's
+        rows.append(dict(table=prefix, key="*", type="any", unit="-", default="none", allowed="keys and values "
+                         "its reader checks (see the meaning)", meaning=spec.meaning or "-", array=array))
     for k, f in spec.fields.items():
         p = f"{prefix}.{k}" if prefix else k
         if _is_section(f):
@@ -406,7 +411,7 @@ def table_keys(spec: Any, prefix: str = "") -> set[str]:
     if isinstance(spec, Tagged):
         return {f"{prefix}.{spec.tag}" if prefix else spec.tag} | set().union(
             *(table_keys(t, prefix) for t in spec.tables.values()))
-    out: set[str] = set()
+    out: set[str] = {f"{prefix}.*"} if spec.extra is not None and prefix else set()
     for k, f in spec.fields.items():
         p = f"{prefix}.{k}" if prefix else k
         out |= table_keys(f, p) if _is_section(f) else {p}

@@ -17,7 +17,7 @@ from ltca.validation import (Int, List, Num, OneOrList, Str, Table, TableList, T
 
 __all__ = ["load_budget_case", "budget_from_data", "load_backlash_table", "CASE"]
 
-_NOTE = Str(max_len=2000, meaning="free text")
+_NOTE = Str(max_len=2000, default="", meaning="free text")
 _COMMON = {
     "name": Str(non_empty=True, max_len=200, required=True, meaning="the member's name in tables and plots"),
     "ratio": Num(1e-3, 1e3, default=1.0, meaning="speed of the member's shaft over the reference shaft's; the "

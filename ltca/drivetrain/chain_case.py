@@ -15,7 +15,7 @@ from ltca.validation import Bool, Int, Num, Str, Table, TableList, check_kind, c
 
 __all__ = ["load_chain_case", "chain_from_data", "CASE"]
 
-_NOTE = Str(max_len=2000, meaning="free text")
+_NOTE = Str(max_len=2000, default="", meaning="free text")
 _UM = dict(lo=0, hi=5000, unit="um")
 
 #: one gear (or worm, or rack-driven pinion) of a chain

@@ -63,7 +63,7 @@ CASE = Table({
     "grid": Table({}, extra=_ANY_KEY, meaning="full factorial: \"dotted.case.key\" = [values]"),
     "variants": TableList(Table({"name": Str(non_empty=True, max_len=200, meaning="the variant's name, unique "
                                                                                   "(default: variant<i>)")},
-                                extra=_ANY_KEY), 1, 10_000,
+                                extra=_ANY_KEY, meaning="\"dotted.case.key\" = value of this variant"), 1, 10_000,
                           meaning="named variants: name and \"dotted.case.key\" = value (times the grid)"),
     "monte_carlo": Table({
         "grade": Int(1, 11, required=True, note="an ISO 1328-1:2013 flank tolerance class",
