@@ -1,15 +1,22 @@
-"""One validation layer for every case kind (cylindrical, bevel, budget, chain, and new kinds).
+"""One validation layer for every case kind (cylindrical, bevel, planetary, budget, chain, study, design).
 
-A case kind declares its tables with the small field types below; :func:`check_table` walks the file
-against them and raises :class:`ltca.errors.CaseError` with one short line: the dotted field, its value
-(shortened) and what is allowed. Every number is finite and bounded; strings, booleans, lists and tables are
-type-checked; unknown keys are refused at every depth; tooth-index tables are checked against the tooth count.
-:func:`read_case_file` reads a file safely (UTF-8 only, bounded nesting and size) for every kind.
+A case kind declares its tables with the small field types below (:class:`Table` of :class:`Num`, :class:`Int`,
+:class:`Str`, :class:`Bool`, :class:`List`, :class:`ToothMap`, :class:`OneOrList` for a torque or a list of them,
+:class:`TableList` for ``[[name]]``, :class:`Tagged` for a table whose ``kind`` picks its keys), each field with its
+unit and meaning; :func:`check_table` walks the file against them and raises :class:`ltca.errors.CaseError` with
+one short line: the dotted field, its value (shortened) and what is allowed. Every number is finite and bounded;
+strings, booleans, lists and tables are type-checked; unknown keys are refused at every depth; tooth-index tables
+are checked against the tooth count. The same declarations give the key reference (:func:`table_reference`,
+``ltca keys``, docs/case_keys.md) and a JSON Schema for editors (:func:`json_schema`). :func:`read_case_file` reads
+a file safely (UTF-8 only, bounded nesting and size) for every kind.
 
-Hand-written rather than pydantic (measured on the bevel kind): its schema here is 22 lines of declarations
-(ltca/bevel/case.py) against 60 for pydantic v2 (41 lines of models and a validator, a 15-line one-line error
-formatter, the loader); pydantic's messages give one side of a range ("less than or equal to 45"), need a
-formatter to reach one line, and the tooth-count check needs custom validators anyway. No new dependency.
+Hand-written rather than pydantic v2 (2.13), measured on the budget kind: the Table declarations are 55 lines with a
+meaning per key, the pydantic models with a one-line error formatter 61 lines without meanings; importing them takes
+33 ms against 564 ms (``python3 -X importtime``, best of 9); a range violation reads ``a number in [0.1, 100]
+N/(um mm)`` against pydantic's ``Input should be less than or equal to 100`` (one side of the range, the tag
+``mesh`` inside the field path), an unknown key ``unknown key; allowed: base_radius_mm, ...`` against ``Extra inputs
+are not permitted``; cross-field checks (exactly one stiffness, teeth against the tooth count) are hand code in
+both, and both give a JSON Schema (5.4 kB here, 5.1 kB from pydantic). No new dependency.
 Imports nothing of ours but :mod:`ltca.errors`.
 """
 from __future__ import annotations
