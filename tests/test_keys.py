@@ -152,3 +152,34 @@ def test_json_schema_of_each_kind_has_every_key():
         expected = {k for k in table_keys(kind_schema(kind)) if not k.endswith(".*")}
         got = props(kind_json_schema(kind))
         assert expected <= got, (kind, expected - got)
+
+
+@pytest.mark.parametrize("how", ["_CASE", "schema"])
+def test_a_planetary_table_is_picked_up_when_declared(monkeypatch, how):
+    """The planetary reader joins ``ltca keys`` by declaring a module-level ``_CASE`` Table or a ``schema()``."""
+    import ltca.planetary.case as planetary
+    spec = Table({"satellite": Table({"teeth": Int(12, 400, required=True, meaning="satellite teeth z1")},
+                                     required=True)})
+    monkeypatch.delattr(planetary, "_CASE", raising=False)
+    monkeypatch.delattr(planetary, "schema", raising=False)
+    assert "planetary" not in kinds()
+    monkeypatch.setattr(planetary, how, spec if how == "_CASE" else (lambda: spec), raising=False)
+    assert "planetary" in kinds() and kind_schema("planetary") is spec
+    md = keys_markdown(only=["planetary"])
+    assert "## planetary" in md and "| `teeth` | integer | - | required | an integer in [12, 400] |" in md
+    assert kind_json_schema("planetary")["required"] == ["satellite"]
+
+
+def test_one_torque_parser():
+    """A torque or a list of them (OneOrList): one field type for every kind, the ranges of each kind's Table."""
+    from ltca.case import check_torques
+    assert check_torques(200) == (200.0,) and check_torques([100, 200.5]) == (100.0, 200.5)
+    for bad, field, words in (([100, 100], "load.torque_nm", "distinct"), ([100, 2e6], "load.torque_nm[1]",
+                                                                           "[1e-3, 1e6] N m"),
+                              ([], "load.torque_nm", "a list of 1 to 100 entries"), ("100", "load.torque_nm",
+                                                                                     "wrong type str")):
+        with pytest.raises(CaseError) as exc:
+            check_torques(bad)
+        assert exc.value.field == field and words in str(exc.value), str(exc.value)
+    spec = OneOrList(Num(0, 1e6, "N m", lo_open=True), 1, 3)
+    assert spec.check([1, 1], "t", None) == (1.0, 1.0)            # repeats allowed unless distinct
