@@ -320,8 +320,8 @@ def check_table(raw: Any, spec: Table, path: str, file: str | None) -> dict:
         p = f"{path}.{k}" if path else k
         if k not in raw:
             if f.required:
-                what = (f"a [{p}] table" if isinstance(f, (Table, Tagged)) else
-                        f"{f.min_len} to {f.max_len} [[{_header(p)}]] tables" if isinstance(f, TableList) else f.words())
+                what = (f"a [{p}] table" if isinstance(f, (Table, Tagged)) else f.words() if not
+                        isinstance(f, TableList) else f"{f.min_len} to {f.max_len} [[{_header(p)}]] tables")
                 raise CaseError(p, None, f"required; {what}", file)
             # an absent table is its defaults, or None when it has required keys (an optional table of its own)
             fill = isinstance(f, Table) and f.default is None and not any(v.required for v in f.fields.values())

@@ -50,7 +50,8 @@ _ASSEMBLY = Table({
     "G_mm": Num(-5, 5, "mm", default=0.0, meaning="gear axial error (+ away from the crossing point)"),
     "sigma_deg": Num(-2, 2, "deg", default=0.0, meaning="shaft angle error"),
 }, required=False)
-_MATERIAL = Table({"youngs_modulus_mpa": Num(1e3, 1e6, "MPa", default=206000.0, meaning="Young's modulus of both members"),
+_MATERIAL = Table({"youngs_modulus_mpa": Num(1e3, 1e6, "MPa", default=206000.0,
+                                          meaning="Young's modulus of both members"),
                    "poisson_ratio": Num(0.0, 0.499, "", default=0.3, meaning="Poisson's ratio of both members")},
                   required=False)
 _MOUNTING = Table({

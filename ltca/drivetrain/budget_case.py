@@ -65,7 +65,8 @@ BACKLASH = Table({
     "cycles": Int(0, 200, default=0, note="0: one pinion revolution", meaning="mesh cycles of the TE"),
 })
 
-TORQUES = OneOrList(Num(1e-3, 1e7, "N m"), 1, 100, required=True, meaning="torques at the reference shaft; one budget each")
+TORQUES = OneOrList(Num(1e-3, 1e7, "N m"), 1, 100, required=True,
+                    meaning="torques at the reference shaft; one budget each")
 
 #: the budget kind
 CASE = Table({
@@ -126,7 +127,8 @@ def budget_from_data(doc: dict, path: str | None = None) -> tuple[DriveTrain, np
             raise CaseError(f"budget.{old}", head[old], "renamed: write torque_nm = a number or a list of "
                             "numbers (N m), the spelling of every case kind", path)
     c = check_table(doc, CASE, "", path)
-    members = tuple(_member(m, raw, f"member[{i}]", path) for i, (m, raw) in enumerate(zip(c["member"], doc["member"])))
+    members = tuple(_member(m, raw, f"member[{i}]", path)
+                    for i, (m, raw) in enumerate(zip(c["member"], doc["member"])))
     b = c["budget"]
     train = DriveTrain(members, b["initial_backlash_deg"] * DEG, b["title"])
     return train, np.asarray(b["torque_nm"], float)
