@@ -213,7 +213,8 @@ class ToothMap:
 
 @dataclass(frozen=True)
 class Table:
-    """A table of known ``fields`` (name -> field type or nested Table); anything else is refused."""
+    """A table of known ``fields`` (name -> field type or nested Table); any other key is refused unless ``extra``
+    admits it (then it is passed through as written, for its reader to check)."""
     fields: dict
     default: Any = None
     required: bool = False
