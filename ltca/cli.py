@@ -256,7 +256,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="only this kind (repeatable): cylindrical, bevel, planetary, budget, chain, study, design")
     k.add_argument("--markdown", action="store_true", help="print Markdown tables (docs/case_keys.md)")
     k.add_argument("--json-schema", metavar="KIND",
-                   help="print the JSON Schema of a kind's case file (for an editor's TOML completion and checks)")
+                   help="print the JSON Schema of a kind's case file, for a TOML editor's completion and checks "
+                        "(a first line '#:schema FILE.json' in the case)")
     k.set_defaults(func=_cmd_keys)
 
     o = sub.add_parser("optimise", help="design optimisation driven by the LTCA: the [design] table's variables",

@@ -28,7 +28,9 @@ HEADER = ("# Case keys\n\n"
           "(`ltca/validation.py`); do not edit by hand.\n"
           "Units are engineer's units: mm, deg, um, N m, MPa. `derived`: computed from the other keys when not "
           "given. A fully commented cylindrical example: `cases/example_commented.toml`. "
-          "`ltca keys --json-schema KIND` prints a kind's JSON Schema for an editor.\n")
+          "`ltca keys --json-schema KIND > KIND.schema.json` writes a kind's JSON Schema; a first line "
+          "`#:schema KIND.schema.json` in a case file lets a TOML editor (Taplo, Even Better TOML) complete and "
+          "check it.\n")
 
 
 def _planetary() -> Table | None:

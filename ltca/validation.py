@@ -427,11 +427,12 @@ def table_keys(spec: Any, prefix: str = "") -> set[str]:
 
 
 def json_schema(spec: Any, title: str | None = None) -> dict:
-    """A JSON Schema (draft 2020-12) of a spec, for editors that complete and check TOML against one (e.g. the
-    Even Better TOML extension's schema association): types, ranges, choices, required keys, no unknown keys."""
+    """A JSON Schema (draft 4, the draft the Taplo TOML toolkit reads) of a spec, for editors that complete and check
+    TOML against one (Taplo, the Even Better TOML extension: a first line ``#:schema FILE.json`` in the case):
+    types, ranges, choices, required keys, no unknown keys."""
     out = _schema(spec)
     if title is not None:
-        out = {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": title, **out}
+        out = {"$schema": "http://json-schema.org/draft-04/schema#", "title": title, **out}
     return out
 
 
@@ -440,8 +441,8 @@ def _schema(f: Any) -> dict:
     if getattr(f, "meaning", ""):
         d["description"] = f.meaning
     if isinstance(f, Num):
-        d |= {"type": "number", "exclusiveMinimum" if f.lo_open else "minimum": f.lo,
-              "exclusiveMaximum" if f.hi_open else "maximum": f.hi}
+        d |= {"type": "number", "minimum": f.lo, "maximum": f.hi}
+        d |= ({"exclusiveMinimum": True} if f.lo_open else {}) | ({"exclusiveMaximum": True} if f.hi_open else {})
     elif isinstance(f, Int):
         d |= {"type": "integer", "minimum": f.lo, "maximum": f.hi}
     elif isinstance(f, Str):
@@ -455,13 +456,13 @@ def _schema(f: Any) -> dict:
         d["anyOf"] = [_schema(f.item), {"type": "array", "items": _schema(f.item), "minItems": f.min_len,
                                         "maxItems": f.max_len}]
     elif isinstance(f, ToothMap):
-        d |= {"type": "object", "propertyNames": {"pattern": "^(0|[1-9][0-9]{0,5})$"},
-              "additionalProperties": _schema(f.value)}
+        d |= {"type": "object", "patternProperties": {"^(0|[1-9][0-9]{0,5})$": _schema(f.value)},
+              "additionalProperties": False}
     elif isinstance(f, TableList):
         d |= {"type": "array", "items": _schema(f.item), "minItems": f.min_len, "maxItems": f.max_len}
     elif isinstance(f, Tagged):
         d |= {"type": "object", "required": [f.tag], "properties": {f.tag: {"enum": list(f.tables)}},
-              "oneOf": [_schema(t) | {"properties": {**_schema(t)["properties"], f.tag: {"const": k}}}
+              "oneOf": [_schema(t) | {"properties": {**_schema(t)["properties"], f.tag: {"enum": [k]}}}
                         for k, t in f.tables.items()]}
     elif isinstance(f, Table):
         d |= {"type": "object", "properties": {k: _schema(v) for k, v in f.fields.items()},

@@ -114,23 +114,31 @@ def test_json_schema_accepts_the_shipped_cases_and_refuses_what_the_table_refuse
         if kind_schema(kind) is None:
             continue
         schema = kind_json_schema(kind)
-        jsonschema.Draft202012Validator.check_schema(schema)
-        validator = jsonschema.Draft202012Validator(schema)
+        jsonschema.Draft4Validator.check_schema(schema)
+        validator = jsonschema.Draft4Validator(schema)
         errors = [e.message for e in validator.iter_errors(data)]
         assert not errors, (name, errors[:3])
         seen.add(kind)
     assert seen >= {"cylindrical", "bevel", "budget", "chain", "study"}
     fzg = tomllib.loads((CASES / "fzg_c14.toml").read_text())
-    validator = jsonschema.Draft202012Validator(kind_json_schema("cylindrical"))
+    validator = jsonschema.Draft4Validator(kind_json_schema("cylindrical"))
     bad = copy.deepcopy(fzg)
     bad["pinion"]["teeth"] = 4                                    # the Table's range: [5, 1000]
     assert any("minimum" in e.message or "less than" in e.message for e in validator.iter_errors(bad))
     bad = copy.deepcopy(fzg)
     bad["assembly"]["backlash_um"] = 30                           # unknown key
     assert any("backlash_um" in e.message for e in validator.iter_errors(bad))
+    bad = copy.deepcopy(fzg)
+    bad["material"]["poisson_ratio"] = 0.5                        # [0, 0.5): the open end
+    assert list(validator.iter_errors(bad))
+    bad = copy.deepcopy(fzg)
+    bad["pinion"]["modifications"] = {"pitch_errors_um": {"01": 5.0}}   # a tooth index with a leading zero
+    assert list(validator.iter_errors(bad))
+    bad["pinion"]["modifications"] = {"pitch_errors_um": {"1": 5.0}}
+    assert not list(validator.iter_errors(bad))
     budget = tomllib.loads((CASES / "budget_wang.toml").read_text())
     budget["member"][1]["shear_modulus_MPa"] = 8e4                # a shaft's key on a torsion member
-    assert list(jsonschema.Draft202012Validator(kind_json_schema("budget")).iter_errors(budget))
+    assert list(jsonschema.Draft4Validator(kind_json_schema("budget")).iter_errors(budget))
     assert main(["keys", "--json-schema", "chain"]) == 0
     printed = json.loads(capsys.readouterr().out)
     assert printed["title"] == "ltca chain case" and printed["required"] == ["workpiece", "chain"]
