@@ -13,10 +13,10 @@ from pathlib import Path
 from typing import Any
 
 from .errors import CaseError
-from .validation import Num, ToothMap
+from .validation import Bool, Int, Num, OneOrList, Str, Table, ToothMap, check_table, table_reference
 
-__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "to_toml", "case_keys", "check_torques", "key_reference",
-           "FIDELITIES"]
+__all__ = ["Modifications", "Member", "CylindricalCase", "load_case", "parse_case", "read_toml", "to_toml", "case_keys",
+           "check_torques", "key_reference", "FIDELITIES", "CASE", "TORQUE"]
 
 DEG = math.pi / 180.0
 
@@ -98,187 +98,134 @@ class CylindricalCase:
     positions_auto: bool = False  # analysis.positions not given: ltca run picks enough for the cycle's transitions
 
 
+#: one torque (N m) as the case file and ``--torque`` give it
+TORQUE = Num(1e-3, 1e6, "N m")
+
 # --------------------------------------------------------------------------------------------- #
-_SCHEMA: dict[str, dict[str, tuple]] = {
-    # section: key -> (type, required, default, check, allowed text)
-    "case": {"name": (str, False, "case", lambda v: 0 < len(v) <= 200, "a string of 1 to 200 characters"),
-             "description": (str, False, "", lambda v: len(v) <= 2000, "a string of at most 2000 characters"),
-             "source": (str, False, "", lambda v: len(v) <= 2000, "a string of at most 2000 characters")},
+#: the cylindrical kind's tables in the one validation layer (ltca.validation): type, range, default, unit and
+#: meaning of every key; ``ltca keys`` and docs/case_keys.md are generated from them
+_SCHEMA: dict[str, dict] = {
+    "case": {"name": Str(non_empty=True, max_len=200, default="case",
+                         meaning="name of the case, in plot titles and summary.json"),
+             "description": Str(max_len=2000, default="", meaning="free text describing the case"),
+             "source": Str(max_len=2000, default="", meaning="where the data come from (paper, drawing, file)")},
     "gear_pair": {
-        "module_mm": (float, True, None, lambda v: 0.1 <= v <= 100, "a number in [0.1, 100] mm"),
-        "pressure_angle_deg": (float, False, 20.0, lambda v: 10 <= v <= 35, "a number in [10, 35] deg"),
-        "helix_angle_deg": (float, False, 0.0, lambda v: -45 <= v <= 45, "a number in [-45, 45] deg"),
+        "module_mm": Num(0.1, 100, "mm", required=True, meaning="normal module m_n"),
+        "pressure_angle_deg": Num(10, 35, "deg", default=20.0,
+                                  meaning="normal pressure angle alpha_n of the basic rack"),
+        "helix_angle_deg": Num(-45, 45, "deg", default=0.0,
+                               meaning="helix angle beta at the reference circle (0: spur; the sign is the hand)"),
     },
     "cutter": {
-        "addendum": (float, False, 1.25, lambda v: 0.8 <= v <= 2.0, "a number in [0.8, 2.0] x module"),
-        "dedendum": (float, False, 1.0, lambda v: 0.5 <= v <= 2.0, "a number in [0.5, 2.0] x module"),
-        "tip_radius": (float, False, 0.38, lambda v: 0.0 <= v <= 0.6, "a number in [0, 0.6] x module"),
-        "shaper_teeth": (int, False, 20, lambda v: 8 <= v <= 200, "an integer in [8, 200]"),
-        "shaper_profile_shift": (float, False, 0.0, lambda v: -1 <= v <= 1, "a number in [-1, 1]"),
+        "addendum": Num(0.8, 2.0, "x module", default=1.25,
+                        meaning="addendum of the generating rack h_aP0 (cuts the dedendum of the gear)"),
+        "dedendum": Num(0.5, 2.0, "x module", default=1.0,
+                        meaning="dedendum of the generating rack (cuts the tip; above the tip circle when the tip "
+                                "diameter is given)"),
+        "tip_radius": Num(0.0, 0.6, "x module", default=0.38,
+                          meaning="tip radius rho_aP0 of the rack (forms the root fillet)"),
+        "shaper_teeth": Int(8, 200, default=20,
+                            meaning="teeth of the pinion-type shaper cutter that cuts an internal gear"),
+        "shaper_profile_shift": Num(-1, 1, default=0.0, meaning="profile shift coefficient of that shaper cutter"),
     },
     "member": {
-        "teeth": (int, True, None, lambda v: 5 <= v <= 1000, "an integer in [5, 1000]"),
-        "profile_shift": (float, False, 0.0, lambda v: -1.5 <= v <= 2.0, "a number in [-1.5, 2.0]"),
-        "face_width_mm": (float, True, None, lambda v: 0.5 <= v <= 2000, "a number in [0.5, 2000] mm"),
-        "tip_diameter_mm": (float, False, None, lambda v: 1 <= v <= 1e5, "a number in [1, 1e5] mm"),
-        "bore_diameter_mm": (float, False, None, lambda v: 1 <= v <= 1e5, "a number in [1, 1e5] mm"),
-        "internal": (bool, False, False, None, "true or false"),
-        "thickness_allowance_um": (float, False, 0.0, lambda v: 0 <= v <= 2000, "a number in [0, 2000] um"),
-        "rim_thickness_mm": (float, False, None, lambda v: 0 < v <= 1e4,
-                             "a number in (0, 1e4] mm: radial rim thickness below the root circle (a ring gear: "
-                             "above it), given with web_thickness_mm"),
-        "web_thickness_mm": (float, False, None, lambda v: 0 < v <= 2000,
-                             "a number in (0, 2000] mm, at most the face width: the web joining rim and hub"),
-        "web_offset_mm": (float, False, 0.0, lambda v: -1000 <= v <= 1000,
-                          "a number in [-1000, 1000] mm: the web's mid-plane from mid-face"),
-        "hub_diameter_mm": (float, False, None, lambda v: 0 < v <= 1e5,
-                            "a positive number (mm): where the web meets the hub (a ring gear: the outer ring)"),
+        "teeth": Int(5, 1000, required=True, meaning="number of teeth z"),
+        "profile_shift": Num(-1.5, 2.0, default=0.0, meaning="profile shift coefficient x"),
+        "face_width_mm": Num(0.5, 2000, "mm", required=True, meaning="face width b"),
+        "tip_diameter_mm": Num(1, 1e5, "mm", meaning="tip diameter d_a (default: from the module, shift and rack)"),
+        "bore_diameter_mm": Num(1, 1e5, "mm", meaning="bore (seat on the shaft, held rigid); a ring gear: its outer "
+                                "diameter held in the housing (default: a proportion of the root diameter)"),
+        "internal": Bool(default=False, meaning="true for an internal (ring) gear; the pinion is always external"),
+        "thickness_allowance_um": Num(0, 2000, "um", default=0.0, meaning="normal tooth thinning for backlash, total"),
+        "rim_thickness_mm": Num(0, 1e4, "mm", lo_open=True, note="given with web_thickness_mm",
+                                meaning="webbed body: radial rim thickness below the root circle (a ring gear: "
+                                        "above it)"),
+        "web_thickness_mm": Num(0, 2000, "mm", lo_open=True, note="at most the face width",
+                                meaning="webbed body: axial width of the web between rim and hub"),
+        "web_offset_mm": Num(-1000, 1000, "mm", default=0.0,
+                             meaning="webbed body: axial offset of the web's mid-plane from mid-face"),
+        "hub_diameter_mm": Num(0, 1e5, "mm", lo_open=True, meaning="webbed body: diameter where the web meets the "
+                                                                    "hub (a ring gear: the outer ring)"),
     },
     "modifications": {
-        "tip_relief_um": (float, False, 0.0, lambda v: 0 <= v <= 500, "a number in [0, 500] um"),
-        "tip_relief_start_diameter_mm": (float, False, None, lambda v: 1 <= v <= 1e5, "a number in [1, 1e5] mm"),
-        "tip_relief_exponent": (float, False, 1.0, lambda v: 1 <= v <= 3, "a number in [1, 3]"),
-        "profile_crowning_um": (float, False, 0.0, lambda v: 0 <= v <= 200, "a number in [0, 200] um"),
-        "lead_crowning_um": (float, False, 0.0, lambda v: 0 <= v <= 200, "a number in [0, 200] um"),
-        "lead_slope_um": (float, False, 0.0, lambda v: -200 <= v <= 200, "a number in [-200, 200] um"),
-        "pitch_errors_um": (dict, False, {}, None, "a table {tooth index = error in um}"),
-        "profile_slope_um": (float, False, 0.0, lambda v: -200 <= v <= 200, "a number in [-200, 200] um"),
-        "roll_ratio_error": (float, False, 0.0, lambda v: -0.01 <= v <= 0.01, "a number in [-0.01, 0.01]"),
-        "profile_form_um": (float, False, 0.0, lambda v: -200 <= v <= 200,
-                            "a number in [-200, 200] um (parabolic form deviation: + convex, - hollow)"),
-        "lead_form_um": (float, False, 0.0, lambda v: -200 <= v <= 200,
-                         "a number in [-200, 200] um (parabolic form deviation: + convex, - hollow)"),
-        "tip_edge_radius_mm": (float, False, 0.0, lambda v: 0 <= v <= 50, "a number in [0, 50] mm (0: a sharp "
-                               "tip edge): the radius of the rounding tangent to the flank and the tip circle"),
-        "tip_chamfer_mm": (float, False, 0.0, lambda v: 0 <= v <= 50, "a number in [0, 50] mm (0: none): the leg "
-                           "of a chamfer of the tip edge, along the flank and along the tip circle"),
+        "tip_relief_um": Num(0, 500, "um", default=0.0,
+                             meaning="tip relief C_a, material removed normal to the flank at the tip"),
+        "tip_relief_start_diameter_mm": Num(1, 1e5, "mm", meaning="diameter where the tip relief starts (default: "
+                                            "the end of the single-pair zone)"),
+        "tip_relief_exponent": Num(1, 3, default=1.0, meaning="shape of the tip relief: 1 linear, 2 parabolic"),
+        "profile_crowning_um": Num(0, 200, "um", default=0.0,
+                                   meaning="profile crowning C_alpha, parabola over the active profile"),
+        "lead_crowning_um": Num(0, 200, "um", default=0.0, meaning="lead crowning C_beta, parabola over the face "
+                                                                   "width"),
+        "lead_slope_um": Num(-200, 200, "um", default=0.0,
+                             meaning="lead slope f_Hbeta, linear over the face (+ at z = +b/2)"),
+        "pitch_errors_um": ToothMap(Num(-500, 500, "um"), meaning="tooth position errors per tooth index (+: drive "
+                                                                  "flank moved back)"),
+        "profile_slope_um": Num(-200, 200, "um", default=0.0, meaning="profile slope deviation f_Halpha (+: tip "
+                                                                      "relieved)"),
+        "roll_ratio_error": Num(-0.01, 0.01, default=0.0,
+                                meaning="generating-chain ratio error e, turned into a profile slope"),
+        "profile_form_um": Num(-200, 200, "um", default=0.0,
+                               meaning="parabolic profile form deviation f_falpha (+ convex, - hollow)"),
+        "lead_form_um": Num(-200, 200, "um", default=0.0,
+                            meaning="parabolic lead form deviation f_fbeta (+ convex, - hollow)"),
+        "tip_edge_radius_mm": Num(0, 50, "mm", default=0.0, note="0: a sharp tip edge",
+                                  meaning="rounding of the tip edges, tangent to the flank and the tip circle"),
+        "tip_chamfer_mm": Num(0, 50, "mm", default=0.0, note="0: none",
+                              meaning="leg of a chamfer of the tip edges, along the flank and the tip circle"),
     },
     "assembly": {
-        "centre_distance_mm": (float, False, None, lambda v: 1 <= v <= 1e5, "a number in [1, 1e5] mm"),
-        "lead_misalignment_um": (float, False, 0.0, lambda v: -500 <= v <= 500, "a number in [-500, 500] um"),
-        "lead_deviation_um": (float, False, 0.0, lambda v: -500 <= v <= 500, "a number in [-500, 500] um"),
+        "centre_distance_mm": Num(1, 1e5, "mm", meaning="centre distance a (default: the working centre distance "
+                                                        "for zero backlash)"),
+        "lead_misalignment_um": Num(-500, 500, "um", default=0.0,
+                                    meaning="misalignment over the face width in the plane of action (f_ma)"),
+        "lead_deviation_um": Num(-500, 500, "um", default=0.0,
+                                 meaning="misalignment over the face width normal to the plane of action"),
     },
     "material": {
-        "youngs_modulus_mpa": (float, False, 206000.0, lambda v: 1e3 <= v <= 1e6, "a number in [1e3, 1e6] MPa"),
-        "poisson_ratio": (float, False, 0.3, lambda v: 0.0 <= v < 0.5, "a number in [0, 0.5)"),
+        "youngs_modulus_mpa": Num(1e3, 1e6, "MPa", default=206000.0, meaning="Young's modulus of both members"),
+        "poisson_ratio": Num(0.0, 0.5, hi_open=True, default=0.3, meaning="Poisson's ratio of both members"),
     },
     "load": {
-        "torque_nm": (object, True, None, None,
-                      "a number in [1e-3, 1e6] N m, or a list of 1 to 100 distinct such numbers (one analysis "
-                      "per torque)"),
-        "driver": (str, False, "pinion", lambda v: v == "pinion", "'pinion' (the pinion drives)"),
+        "torque_nm": OneOrList(TORQUE, 1, 100, distinct=True, required=True,
+                               meaning="pinion torque, or a list of torques analysed one after the other; "
+                                       "`ltca run --torque` replaces it"),
+        "driver": Str(("pinion",), default="pinion", meaning="the driving member (the pinion)"),
     },
     "analysis": {
-        "positions": (int, False, 30, lambda v: 1 <= v <= 2000, "an integer in [1, 2000] (per mesh cycle)"),
-        "cycles": (int, False, 1, lambda v: 1 <= v <= 1000, "an integer in [1, 1000] (mesh cycles analysed; the "
-                   "pinion teeth for a full pinion revolution)"),
-        "fidelity": (str, False, "default", lambda v: v in FIDELITIES, f"one of {sorted(FIDELITIES)}"),
+        "positions": Int(1, 2000, default=30, note="per mesh cycle",
+                         meaning="mesh positions per mesh cycle (default: 30, or more when the transition zones of "
+                                 "the cycle need them: 4 positions in each)"),
+        "cycles": Int(1, 1000, default=1, note="mesh cycles analysed; the pinion teeth for a full pinion revolution",
+                      meaning="mesh cycles analysed (the pinion's teeth: a full pinion revolution)"),
+        "fidelity": Str(tuple(FIDELITIES), default="default",
+                        meaning="element sizes and contact grid: coarse (fast), default, fine"),
     },
-}
-#: every key's unit and meaning, beside the schema: ``ltca keys`` and docs/case_keys.md are generated from both
-#: (tests/test_case_keys.py fails when a key of _SCHEMA has no entry here)
-_DOC: dict[str, dict[str, tuple[str, str]]] = {
-    "case": {"name": ("-", "name of the case, in plot titles and summary.json"),
-             "description": ("-", "free text describing the case"),
-             "source": ("-", "where the data come from (paper, drawing, file)")},
-    "gear_pair": {"module_mm": ("mm", "normal module m_n"),
-                  "pressure_angle_deg": ("deg", "normal pressure angle alpha_n of the basic rack"),
-                  "helix_angle_deg": ("deg", "helix angle beta at the reference circle (0: spur; the sign is the hand)")},
-    "cutter": {"addendum": ("x module", "addendum of the generating rack h_aP0 (cuts the dedendum of the gear)"),
-               "dedendum": ("x module", "dedendum of the generating rack (cuts the tip; above the tip circle "
-                            "when the tip diameter is given)"),
-               "tip_radius": ("x module", "tip radius rho_aP0 of the rack (forms the root fillet)"),
-               "shaper_teeth": ("-", "teeth of the pinion-type shaper cutter that cuts an internal gear"),
-               "shaper_profile_shift": ("-", "profile shift coefficient of that shaper cutter")},
-    "member": {"teeth": ("-", "number of teeth z"),
-               "profile_shift": ("-", "profile shift coefficient x"),
-               "face_width_mm": ("mm", "face width b"),
-               "tip_diameter_mm": ("mm", "tip diameter d_a (default: from the module, shift and rack)"),
-               "bore_diameter_mm": ("mm", "bore (seat on the shaft, held rigid); a ring gear: its outer diameter "
-                                    "held in the housing (default: a proportion of the root diameter)"),
-               "internal": ("-", "true for an internal (ring) gear; the pinion is always external"),
-               "thickness_allowance_um": ("um", "normal tooth thinning for backlash, total"),
-               "rim_thickness_mm": ("mm", "webbed body: radial rim thickness below the root circle"),
-               "web_thickness_mm": ("mm", "webbed body: axial width of the web between rim and hub"),
-               "web_offset_mm": ("mm", "webbed body: axial offset of the web's mid-plane from mid-face"),
-               "hub_diameter_mm": ("mm", "webbed body: diameter where the web meets the hub")},
-    "modifications": {
-        "tip_relief_um": ("um", "tip relief C_a, material removed normal to the flank at the tip"),
-        "tip_relief_start_diameter_mm": ("mm", "diameter where the tip relief starts (default: the end of the "
-                                         "single-pair zone)"),
-        "tip_relief_exponent": ("-", "shape of the tip relief: 1 linear, 2 parabolic"),
-        "profile_crowning_um": ("um", "profile crowning C_alpha, parabola over the active profile"),
-        "lead_crowning_um": ("um", "lead crowning C_beta, parabola over the face width"),
-        "lead_slope_um": ("um", "lead slope f_Hbeta, linear over the face (+ at z = +b/2)"),
-        "pitch_errors_um": ("um", "tooth position errors per tooth index (+: drive flank moved back)"),
-        "profile_slope_um": ("um", "profile slope deviation f_Halpha (+: tip relieved)"),
-        "roll_ratio_error": ("-", "generating-chain ratio error e, turned into a profile slope"),
-        "profile_form_um": ("um", "parabolic profile form deviation f_falpha (+ convex, - hollow)"),
-        "lead_form_um": ("um", "parabolic lead form deviation f_fbeta (+ convex, - hollow)"),
-        "tip_edge_radius_mm": ("mm", "rounding of the tip edges, tangent to the flank and the tip circle (0: sharp)"),
-        "tip_chamfer_mm": ("mm", "leg of a chamfer of the tip edges, along the flank and the tip circle (0: none)")},
-    "assembly": {"centre_distance_mm": ("mm", "centre distance a (default: the working centre distance for zero "
-                                        "backlash)"),
-                 "lead_misalignment_um": ("um", "misalignment over the face width in the plane of action (f_ma)"),
-                 "lead_deviation_um": ("um", "misalignment over the face width normal to the plane of action")},
-    "material": {"youngs_modulus_mpa": ("MPa", "Young's modulus of both members"),
-                 "poisson_ratio": ("-", "Poisson's ratio of both members")},
-    "load": {"torque_nm": ("N m", "pinion torque, or a list of torques analysed one after the other; "
-                           "`ltca run --torque` replaces it"),
-             "driver": ("-", "the driving member (the pinion)")},
-    "analysis": {"positions": ("-", "mesh positions per mesh cycle (default: 30, or more when the transition "
-                               "zones of the cycle need them: 4 positions in each)"),
-                 "cycles": ("-", "mesh cycles analysed (the pinion's teeth: a full pinion revolution)"),
-                 "fidelity": ("-", "element sizes and contact grid: coarse (fast), default, fine")},
 }
 _TOP = {"case", "gear_pair", "cutter", "pinion", "gear", "assembly", "material", "load", "analysis"}
 #: top-level tables read elsewhere: [design] by ltca.design.schema (``ltca optimise``)
 _ELSEWHERE = {"design"}
 
 
-def _section(data: dict, name: str, schema: str, file: str | None, required: bool = False) -> dict:
-    raw = data.get(name)
-    if raw is None:
-        if required:
-            raise CaseError(name, None, "a required table [" + name + "] is missing", file)
-        raw = {}
-    if not isinstance(raw, dict):
-        raise CaseError(name, raw, "a table", file)
-    spec = _SCHEMA[schema]
-    extra = set(raw) - set(spec) - ({"modifications"} if schema == "member" else set())
-    if extra:
-        key = sorted(extra)[0]
-        raise CaseError(f"{name}.{key}", raw[key], f"unknown key; allowed keys are {sorted(spec)}", file)
-    out = {}
-    for key, (typ, req, default, check, allowed) in spec.items():
-        path = f"{name}.{key}"
-        if key not in raw:
-            if req:
-                raise CaseError(path, None, f"required; {allowed}", file)
-            out[key] = default
-            continue
-        v = raw[key]
-        if typ is float and isinstance(v, int) and not isinstance(v, bool):
-            v = float(v)
-        if typ is int and isinstance(v, float) and v.is_integer():
-            raise CaseError(path, v, f"{allowed} (write it without a decimal point)", file)
-        if not isinstance(v, typ) or (typ in (int, float) and isinstance(v, bool)):
-            raise CaseError(path, v, f"wrong type {type(v).__name__}; {allowed}", file)
-        if typ is float and not math.isfinite(v):
-            raise CaseError(path, v, allowed, file)
-        if check is not None and not check(v):
-            raise CaseError(path, v, allowed, file)
-        out[key] = v
-    return out
+def _member_table() -> Table:
+    return Table({**_SCHEMA["member"], "modifications": Table(_SCHEMA["modifications"])}, required=True)
 
 
-def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
-    m = _section({name: raw}, name, "modifications", file)
+#: the cylindrical kind: every table of a case file
+CASE = Table({
+    "case": Table(_SCHEMA["case"]), "gear_pair": Table(_SCHEMA["gear_pair"], required=True),
+    "cutter": Table(_SCHEMA["cutter"]), "pinion": _member_table(), "gear": _member_table(),
+    "assembly": Table(_SCHEMA["assembly"]), "material": Table(_SCHEMA["material"]),
+    "load": Table(_SCHEMA["load"], required=True), "analysis": Table(_SCHEMA["analysis"]),
+}, extra=lambda k: k in _ELSEWHERE)
+
+
+def _modifications(m: dict, name: str, file: str | None) -> Modifications:
+    """The checked ``[*.modifications]`` table ``m`` in mm."""
     if m["tip_edge_radius_mm"] > 0 and m["tip_chamfer_mm"] > 0:
         raise CaseError(f"{name}.tip_chamfer_mm", m["tip_chamfer_mm"], "0 when tip_edge_radius_mm is given: a tip "
                         "edge is rounded or chamfered, not both", file)
-    pe = ToothMap(Num(-500, 500, "um")).check(m["pitch_errors_um"], f"{name}.pitch_errors_um", file)
-    errors = [(tooth, v * 1e-3) for tooth, v in pe.items()]
+    errors = [(tooth, v * 1e-3) for tooth, v in m["pitch_errors_um"].items()]
     return Modifications(
         tip_relief=m["tip_relief_um"] * 1e-3, tip_relief_start_diameter=m["tip_relief_start_diameter_mm"],
         tip_relief_exponent=m["tip_relief_exponent"], profile_crowning=m["profile_crowning_um"] * 1e-3,
@@ -288,9 +235,9 @@ def _modifications(raw: dict, name: str, file: str | None) -> Modifications:
         lead_form=m["lead_form_um"] * 1e-3, tip_edge_radius=m["tip_edge_radius_mm"], tip_chamfer=m["tip_chamfer_mm"])
 
 
-def _member(data: dict, name: str, file: str | None) -> Member:
-    m = _section(data, name, "member", file, required=True)
-    mods = _modifications(data[name].get("modifications", {}), f"{name}.modifications", file)
+def _member(m: dict, name: str, file: str | None) -> Member:
+    """The checked ``[pinion]`` or ``[gear]`` table ``m``, after the cross-field checks."""
+    mods = _modifications(m["modifications"], f"{name}.modifications", file)
     ToothMap.check_teeth(dict(mods.pitch_errors), m["teeth"], f"{name}.modifications.pitch_errors_um", file)
     if (m["rim_thickness_mm"] is None) != (m["web_thickness_mm"] is None):
         key = "web_thickness_mm" if m["web_thickness_mm"] is None else "rim_thickness_mm"
@@ -312,25 +259,16 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
     """Validate a case given as a dict (as read from TOML) and convert it to internal units."""
     from .validation import check_kind
     check_kind(data, "cylindrical", file)
-    extra = set(data) - _TOP - _ELSEWHERE
-    if extra:
-        key = sorted(extra)[0]
-        raise CaseError(key, "[table]" if isinstance(data[key], dict) else data[key],
-                        f"unknown key; allowed top-level tables are {sorted(_TOP | _ELSEWHERE)}", file)
-    c = _section(data, "case", "case", file)
-    gp = _section(data, "gear_pair", "gear_pair", file, required=True)
-    cu = _section(data, "cutter", "cutter", file)
-    pinion, gear = _member(data, "pinion", file), _member(data, "gear", file)
-    asm = _section(data, "assembly", "assembly", file)
-    mat = _section(data, "material", "material", file)
     if isinstance(data.get("load"), dict) and "torques_nm" in data["load"]:
         raise CaseError("load.torques_nm", data["load"]["torques_nm"], "renamed: write torque_nm = a number or a "
                         "list of numbers (N m), e.g. torque_nm = [100.0, 200.0]", file)
-    load = _section(data, "load", "load", file, required=True)
-    ana = _section(data, "analysis", "analysis", file)
+    d = check_table(data, CASE, "", file)
+    c, gp, cu, asm, mat, load, ana = (d[k] for k in ("case", "gear_pair", "cutter", "assembly", "material", "load",
+                                                     "analysis"))
+    pinion, gear = _member(d["pinion"], "pinion", file), _member(d["gear"], "gear", file)
     if pinion.internal:
         raise CaseError("pinion.internal", True, "the pinion must be external (false)", file)
-    torques = check_torques(load["torque_nm"], "load.torque_nm", file)
+    torques = load["torque_nm"]
     m = gp["module_mm"]
     if gear.internal and gear.teeth - pinion.teeth < 8:
         raise CaseError("gear.teeth", gear.teeth,
@@ -350,54 +288,20 @@ def parse_case(data: dict, file: str | None = None) -> CylindricalCase:
         positions_auto="positions" not in (data.get("analysis") or {}))
 
 
-#: one torque (N m) as the case file and ``--torque`` give it
-TORQUE = Num(1e-3, 1e6, "N m")
-
-
 def check_torques(v: Any, path: str = "load.torque_nm", file: str | None = None) -> tuple[float, ...]:
     """``torque_nm``: a number or a list of 1 to 100 distinct numbers in [1e-3, 1e6] N m -> tuple in N m."""
-    from .validation import List
-    if isinstance(v, list):
-        out = List(TORQUE, 1, 100).check(v, path, file)
-        if len(set(out)) != len(out):
-            raise CaseError(path, v, "distinct torques (each torque is one analysis)", file)
-        return tuple(out)
-    return (TORQUE.check(v, path, file),)
+    return _SCHEMA["load"]["torque_nm"].check(v, path, file)
 
 
 def case_keys() -> dict[str, str]:
     """Every settable case key as a dotted path (``"pinion.modifications.lead_crowning_um"``) -> what is allowed."""
-    out = {}
-    for sec in sorted(_TOP):
-        schema = "member" if sec in ("pinion", "gear") else sec
-        for key, spec in _SCHEMA[schema].items():
-            out[f"{sec}.{key}"] = spec[4]
-        if schema == "member":
-            for key, spec in _SCHEMA["modifications"].items():
-                out[f"{sec}.modifications.{key}"] = spec[4]
-    return out
+    return {f"{r['table']}.{r['key']}": r["allowed"] for r in table_reference(CASE)}
 
 
 def key_reference() -> list[dict]:
-    """Every case key with its table, type, unit, default, allowed range and meaning, from the schema (the source of
-    ``ltca keys`` and docs/case_keys.md)."""
-    rows = []
-    order = ["case", "gear_pair", "cutter", "pinion", "pinion.modifications", "gear", "gear.modifications",
-             "assembly", "material", "load", "analysis"]
-    for table in order:
-        schema = "modifications" if table.endswith(".modifications") else \
-            ("member" if table in ("pinion", "gear") else table)
-        for key, (typ, req, default, _check, allowed) in _SCHEMA[schema].items():
-            unit, meaning = _DOC[schema][key]
-            tname = {float: "number", int: "integer", str: "string", bool: "boolean", dict: "table",
-                     object: "number or list"}.get(typ, typ.__name__)
-            if default is None:
-                dflt = "required" if req else "derived"
-            else:
-                dflt = repr(default) if not isinstance(default, bool) else str(default).lower()
-            rows.append(dict(table=table, key=key, type=tname, unit=unit, default=dflt, allowed=allowed,
-                             meaning=meaning))
-    return rows
+    """Every case key with its table, type, unit, default, allowed range and meaning, walked from :data:`CASE`
+    (the source of ``ltca keys`` and docs/case_keys.md)."""
+    return [{k: v for k, v in r.items() if k != "array"} for r in table_reference(CASE)]
 
 
 def read_toml(path: str | Path) -> dict:

@@ -182,8 +182,12 @@ def _cmd_optimise(a: argparse.Namespace) -> int:
 
 
 def _cmd_keys(a: argparse.Namespace) -> int:
-    from .keys import keys_markdown, keys_text
-    print(keys_markdown(a.table) if a.markdown else keys_text(a.table), end="")
+    from .keys import keys_markdown, keys_text, kind_json_schema
+    if a.json_schema:
+        import json
+        print(json.dumps(kind_json_schema(a.json_schema), indent=1))
+        return 0
+    print(keys_markdown(a.table, a.kind) if a.markdown else keys_text(a.table, a.kind), end="")
     return 0
 
 
@@ -244,12 +248,18 @@ def build_parser() -> argparse.ArgumentParser:
     r.set_defaults(func=_cmd_run)
 
     k = sub.add_parser("keys", help="reference of every case key: unit, default, allowed range, meaning",
-                       description="Prints every key of a cylindrical case file (generated from the schema in "
-                                   "ltca/case.py): type, unit, default, allowed range and meaning. "
+                       description="Prints every key of the case files of every kind (cylindrical, bevel, "
+                                   "planetary, budget, chain, study, design), walked from the tables each kind "
+                                   "declares in ltca/validation.py: type, unit, default, allowed range and meaning. "
                                    "docs/case_keys.md is `ltca keys --markdown`.")
     k.add_argument("table", nargs="?", default=None,
-                   help="only this table, e.g. load, pinion, pinion.modifications (default: every table)")
+                   help="only this table, e.g. load, pinion, pinion.modifications, member (default: every table)")
+    k.add_argument("--kind", action="append", metavar="KIND",
+                   help="only this kind (repeatable): cylindrical, bevel, planetary, budget, chain, study, design")
     k.add_argument("--markdown", action="store_true", help="print Markdown tables (docs/case_keys.md)")
+    k.add_argument("--json-schema", metavar="KIND",
+                   help="print the JSON Schema of a kind's case file, for a TOML editor's completion and checks "
+                        "(a first line '#:schema FILE.json' in the case)")
     k.set_defaults(func=_cmd_keys)
 
     o = sub.add_parser("optimise", help="design optimisation driven by the LTCA: the [design] table's variables",

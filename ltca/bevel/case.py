@@ -15,7 +15,7 @@ from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
-from ..validation import DesignError, Int, List, Num, Str, Table, check_kind, check_table
+from ..validation import DesignError, Int, Num, OneOrList, Str, Table, check_kind, check_table
 from .model import BevelMounting
 
 __all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data"]
@@ -23,48 +23,58 @@ __all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data"]
 # the bevel kind in the one validation layer (ltca.validation); ranges are those the cradle model and the
 # Cao et al. (2008) synthesis are known to handle (outside them the Newton solves of generation and TCA lose the flank)
 _FLANK = Table({
-    "path_angle_deg": Num(-60, 60, "deg", required=True, note="contact-path angle eta2 on the gear flank"),
-    "te_magnitude_arcsec": Num(1, 200, "arcsec", required=True, note="parabolic TE amplitude over a cycle"),
-    "ellipse_major_mm": Num(0.5, 50, "mm", required=True, note="contact-ellipse major axis at the mean point"),
-}, required=True)
+    "path_angle_deg": Num(-60, 60, "deg", required=True, meaning="contact-path angle eta2 on the gear flank"),
+    "te_magnitude_arcsec": Num(1, 200, "arcsec", required=True, meaning="parabolic TE amplitude over a cycle"),
+    "ellipse_major_mm": Num(0.5, 50, "mm", required=True, meaning="contact-ellipse major axis at the mean point"),
+}, required=True, meaning="synthesis target of the flank")
 _BEVEL = Table({
-    "pinion_teeth": Int(6, 100, required=True),
-    "gear_teeth": Int(6, 300, required=True, note=">= pinion_teeth"),
-    "module_mm": Num(0.5, 50, "mm", required=True, note="outer transverse module"),
-    "face_width_mm": Num(1, 500, "mm", required=True, note="at most 0.4 of the outer cone distance"),
-    "spiral_angle_deg": Num(15, 45, "deg", required=True),
-    "pressure_angle_deg": Num(14, 25, "deg", required=True),
-    "shaft_angle_deg": Num(45, 135, "deg", default=90.0),
-    "gear_hand": Str(("left", "right"), required=True),
-    "cutter_radius_mm": Num(5, 1000, "mm", required=True),
-    "taper": Str(("standard", "uniform"), default="standard"),
-    "blank_offset_mm": Num(-10, 10, "mm", default=None, note="pinion blank offset of the redesign"),
+    "pinion_teeth": Int(6, 100, required=True, meaning="pinion teeth z1"),
+    "gear_teeth": Int(6, 300, required=True, note=">= pinion_teeth", meaning="gear teeth z2"),
+    "module_mm": Num(0.5, 50, "mm", required=True, meaning="outer transverse module"),
+    "face_width_mm": Num(1, 500, "mm", required=True, note="at most 0.4 of the outer cone distance",
+                         meaning="face width"),
+    "spiral_angle_deg": Num(15, 45, "deg", required=True, meaning="mean spiral angle"),
+    "pressure_angle_deg": Num(14, 25, "deg", required=True, meaning="pressure angle of the cutter blades"),
+    "shaft_angle_deg": Num(45, 135, "deg", default=90.0, meaning="shaft angle"),
+    "gear_hand": Str(("left", "right"), required=True, meaning="hand of spiral of the gear"),
+    "cutter_radius_mm": Num(5, 1000, "mm", required=True, meaning="mean cutter radius of the face-milling head"),
+    "taper": Str(("standard", "uniform"), default="standard", meaning="tooth depth taper"),
+    "blank_offset_mm": Num(-10, 10, "mm", default=None, meaning="pinion blank offset of the redesign (default: none)"),
     "working": _FLANK,
     "coast": _FLANK,
 }, required=True)
-_TORQUE = Num(-1e5, 1e5, "N m", note="pinion torque: > 0 drives on the working flank (pinion concave), < 0 on "
-                                      "the coast flank (pinion convex)")
+_TORQUE = Num(-1e5, 1e5, "N m", note="not 0")
 _ASSEMBLY = Table({
-    "E_mm": Num(-5, 5, "mm", default=0.0, note="pinion offset error (hypoid offset direction)"),
-    "P_mm": Num(-5, 5, "mm", default=0.0, note="pinion axial error (+ away from the crossing point)"),
-    "G_mm": Num(-5, 5, "mm", default=0.0, note="gear axial error (+ away from the crossing point)"),
-    "sigma_deg": Num(-2, 2, "deg", default=0.0, note="shaft angle error"),
+    "E_mm": Num(-5, 5, "mm", default=0.0, meaning="pinion offset error (hypoid offset direction)"),
+    "P_mm": Num(-5, 5, "mm", default=0.0, meaning="pinion axial error (+ away from the crossing point)"),
+    "G_mm": Num(-5, 5, "mm", default=0.0, meaning="gear axial error (+ away from the crossing point)"),
+    "sigma_deg": Num(-2, 2, "deg", default=0.0, meaning="shaft angle error"),
 }, required=False)
-_MATERIAL = Table({"youngs_modulus_mpa": Num(1e3, 1e6, "MPa", default=206000.0),
-                   "poisson_ratio": Num(0.0, 0.499, "", default=0.3)}, required=False)
+_MATERIAL = Table({"youngs_modulus_mpa": Num(1e3, 1e6, "MPa", default=206000.0,
+                                          meaning="Young's modulus of both members"),
+                   "poisson_ratio": Num(0.0, 0.499, "", default=0.3, meaning="Poisson's ratio of both members")},
+                  required=False)
 _MOUNTING = Table({
     "pinion_seat_diameter_mm": Num(1, 5000, "mm", default=None,
-                                   note="pinion shaft seat, held as on a rigid shaft; default 0.45 x the toe's "
-                                        "root diameter; below the toe's root diameter less two whole depths"),
+                                   note="below the toe's root diameter less two whole depths",
+                                   meaning="pinion shaft seat, held as on a rigid shaft (default: 0.45 x the toe's "
+                                           "root diameter)"),
     "gear_mounting_distance_mm": Num(1, 1e4, "mm", default=None,
-                                     note="pitch apex to the gear's back mounting face, held rigidly; default "
-                                          "1.2 whole depths behind the heel root; behind the heel root"),
+                                     note="0.3 to 20 whole depths behind the heel root",
+                                     meaning="pitch apex to the gear's back mounting face, held rigidly (default: "
+                                             "1.2 whole depths behind the heel root)"),
 }, required=False)
-_ANALYSIS = Table({"positions": Int(4, 400, default=21, note="positions per mesh cycle"),
-                   "fidelity": Str(("coarse", "default", "fine"), default="default")}, required=False)
-_CASE = Table({"bevel": _BEVEL, "case": Table({"name": Str(non_empty=True, max_len=200, default=None),
-                                               "description": Str(default=""), "source": Str(default="")}),
-               "load": Table({"torque_nm": Num(-1e5, 1e5, "N m")}, required=False),
+_ANALYSIS = Table({"positions": Int(4, 400, default=21, meaning="positions per mesh cycle"),
+                   "fidelity": Str(("coarse", "default", "fine"), default="default",
+                                   meaning="element sizes and contact grid")}, required=False)
+_CASE = Table({"bevel": _BEVEL,
+               "case": Table({"name": Str(non_empty=True, max_len=200, default=None,
+                                          meaning="name of the case (default: the file's stem)"),
+                              "description": Str(default="", meaning="free text describing the case"),
+                              "source": Str(default="", meaning="where the data come from")}),
+               "load": Table({"torque_nm": OneOrList(_TORQUE, 1, 20, distinct=True, meaning="pinion torque: > 0 "
+                                                     "drives on the working flank (pinion concave), < 0 on the "
+                                                     "coast flank (pinion convex)")}, required=False),
                "assembly": _ASSEMBLY, "material": _MATERIAL, "analysis": _ANALYSIS, "mounting": _MOUNTING})
 
 
@@ -99,8 +109,10 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
     """:func:`load_bevel_case` of a case already read from TOML (``data`` without tables of other commands, e.g.
     ``[design]``); ``f`` names the file in messages, ``stem`` is the name when [case] gives none."""
     check_kind(data, "bevel", f)
-    torques = _torques(data, f)
     c = check_table(data, _CASE, "", f)
+    torques = c["load"]["torque_nm"] or ()
+    if any(x == 0 for x in torques):
+        raise CaseError("load.torque_nm", data["load"]["torque_nm"], "non-zero torques (the sign picks the flank)", f)
     b = c["bevel"]
     if b["gear_teeth"] < b["pinion_teeth"]:
         raise CaseError("bevel.gear_teeth", b["gear_teeth"], f"at least pinion_teeth = {b['pinion_teeth']}", f)
@@ -148,20 +160,3 @@ def _mounting(m: dict, blank, f: str | None) -> BevelMounting:
                         f"in [{lo:.2f}, {hi:.2f}] mm (0.3 to 20 whole depths behind the gear's heel root at "
                         f"{z_heel:.2f} mm from the pitch apex)", f)
     return out
-
-
-def _torques(data: dict, f: str) -> tuple[float, ...]:
-    """``[load] torque_nm``: a number or a list of 1 to 20 distinct non-zero numbers in [-1e5, 1e5] N m; taken out
-    of the table before the generic check (which sees a single number)."""
-    load = data.get("load")
-    if not isinstance(load, dict) or "torque_nm" not in load:
-        return ()
-    v = load["torque_nm"]
-    out = (List(_TORQUE, 1, 20).check(v, "load.torque_nm", f) if isinstance(v, list)
-           else [_TORQUE.check(v, "load.torque_nm", f)])
-    if any(x == 0 for x in out):
-        raise CaseError("load.torque_nm", v, "non-zero torques (the sign picks the flank)", f)
-    if len(set(out)) != len(out):
-        raise CaseError("load.torque_nm", v, "distinct torques (each torque is one analysis)", f)
-    data["load"] = {**load, "torque_nm": float(out[0])}
-    return tuple(float(x) for x in out)

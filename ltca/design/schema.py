@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from ..case import FIDELITIES
 from ..errors import CaseError
-from ..validation import Int, List, Num, Str, Table, check_table
+from ..validation import Int, List, Num, Str, Table, check_table, table_reference
 
 __all__ = ["VariableKind", "Variable", "Constraints", "DesignSpec", "VARIABLES", "OBJECTIVES", "OPTIMISERS",
            "CYLINDRICAL_EDGES", "parse_design", "design_key_reference", "design_keys"]
@@ -118,7 +118,8 @@ _CONSTRAINTS = Table({
     "edges": List(Str(CYLINDRICAL_EDGES), 1, 8, default=["face end"]),
     "edge_margin_mm": Num(0.0, 20.0, "mm", note="bevel: loaded cells' distance to the toe and the heel"),
     "max_edge_share": Num(0.0, 1.0, note="bevel: largest share of a position's load on edge cells"),
-    "tolerance_box": Table({k: Num(0.0, 2.0, "mm", default=0.0) for k in ("E_mm", "P_mm", "G_mm")}),
+    "tolerance_box": Table({k: Num(0.0, 2.0, "mm", default=0.0, meaning=f"half-width of the {k[0]} tolerance")
+                            for k in ("E_mm", "P_mm", "G_mm")}),
 })
 _DESIGN = Table({
     "variables": Table({}, required=True, extra=lambda k: True),
@@ -137,8 +138,6 @@ _DESIGN = Table({
 
 #: the rows of the case-key reference: (table, key, type, unit, default, allowed, meaning)
 _DOC = {
-    "variables": ("table", "-", "required", "one table per variable, [design.variables.NAME]",
-                  "the design variables; NAME one of the variables below"),
     "objective": ("string", "-", "'max_te_ptp'", "one of " + ", ".join(repr(k) for k in OBJECTIVES),
                   "loaded TE peak-to-peak (arcsec) at each torque of [load], times its weight: the largest or mean"),
     "weights": ("list", "-", "all 1", "a list of positive numbers, one per torque of [load] torque_nm",
@@ -177,9 +176,6 @@ _DOC_CON = {
     "max_edge_share": ("number", "-", "none", "a number in [0, 1] (bevel)", "bevel: at the top torque, at the "
                        "nominal mounting and every corner of tolerance_box, at most this share of a position's "
                        "normal load on cells at an edge (the pinion top at the mesh entry, toe, heel, ...)"),
-    "tolerance_box": ("table", "mm", "E_mm = P_mm = G_mm = 0", "E_mm, P_mm, G_mm: numbers in [0, 2] mm (bevel)",
-                      "bevel: half-widths of the mounting tolerance box; its 8 corners (+-E, +-P, +-G) are "
-                      "checked for the edge margin"),
 }
 
 
@@ -265,12 +261,21 @@ def parse_design(data: dict, kind: str, n_torques: int, file: str | None = None)
 
 
 def design_key_reference() -> list[dict]:
-    """The ``[design]`` keys as rows of the case-key reference (:func:`ltca.case.key_reference`'s format)."""
+    """The ``[design]`` keys as rows of the case-key reference (:func:`ltca.validation.table_reference`'s format),
+    walked from :data:`_DESIGN` and :data:`_VAR` (so no accepted key is missing) with the wording of ``_DOC*``
+    (defaults and ranges that depend on the case); the free-form ``[design.variables]`` lists the variables each
+    backend offers."""
+    hand = {("design", k): v for k, v in _DOC.items()} | {("design.constraints", k): v for k, v in _DOC_CON.items()} \
+        | {("design.variables.NAME", k): v for k, v in _DOC_VAR.items()}
+    walked = table_reference(Table({"design": _DESIGN})) + table_reference(_VAR, "design.variables.NAME")
     rows = []
-    for table, doc in (("design", _DOC), ("design.variables.NAME", _DOC_VAR), ("design.constraints", _DOC_CON)):
-        for key, (typ, unit, default, allowed, meaning) in doc.items():
-            rows.append(dict(table=table, key=key, type=typ, unit=unit, default=default, allowed=allowed,
-                             meaning=meaning))
+    for r in walked:
+        if r["table"] == "design.variables":          # the free-form table: one row per offered variable below
+            continue
+        doc = hand.get((r["table"], r["key"]))
+        if doc is not None:
+            r = dict(r, type=doc[0], unit=doc[1], default=doc[2], allowed=doc[3], meaning=doc[4])
+        rows.append({k: v for k, v in r.items() if k != "array"})
     for kind, offered in VARIABLES.items():
         for name, vk in offered.items():
             rows.append(dict(table="design.variables", key=name, type="table", unit=vk.unit, default="-",

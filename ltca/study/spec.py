@@ -28,7 +28,8 @@ every torque. A variant's id hashes everything that defines its results except t
 resolved case and the largest torque, which sets the teeth in mesh), so a rerun finds what is done.
 A bad study file raises :class:`ltca.errors.CaseError` naming the field (exit status 2).
 
-Imports ltca.case, ltca.errors and ltca.study.montecarlo.
+The file is declared as :mod:`ltca.validation` tables (:data:`CASE`); the dotted keys it varies are checked against
+the case keys after the table check. Imports ltca.case, ltca.errors, ltca.validation and ltca.study.montecarlo.
 """
 from __future__ import annotations
 
@@ -41,11 +42,38 @@ from pathlib import Path
 
 from ..case import case_keys, parse_case, read_toml, to_toml
 from ..errors import CaseError
+from ..validation import Int, List, Num, OneOrList, Str, Table, TableList, check_table
 from .montecarlo import MEMBERS, check_members, draw_sample
 
-__all__ = ["Study", "Variant", "MonteCarlo", "set_key", "to_toml"]
+__all__ = ["Study", "Variant", "MonteCarlo", "set_key", "to_toml", "CASE"]
 
-_SECTIONS = {"study", "set", "grid", "variants", "monte_carlo"}
+_ANY_KEY = lambda k: True       # noqa: E731  dotted case keys, checked against the case's keys after the table
+_TORQUE = Num(0, 1e6, "N m", lo_open=True)
+
+#: the study kind
+CASE = Table({
+    "study": Table({
+        "name": Str(non_empty=True, max_len=200, meaning="the study's name (default: the file's stem)"),
+        "case": Str(non_empty=True, max_len=1000, required=True,
+                    meaning="the base case file (.toml), relative to the study file"),
+        "torque_nm": OneOrList(_TORQUE, 1, 100, meaning="the torque dimension (default: the base case's torques)"),
+        "description": Str(max_len=2000, default="", meaning="free text"),
+    }, required=True),
+    "set": Table({}, extra=_ANY_KEY, meaning="fixed overrides of the base case: \"dotted.case.key\" = value"),
+    "grid": Table({}, extra=_ANY_KEY, meaning="full factorial: \"dotted.case.key\" = [values]"),
+    "variants": TableList(Table({"name": Str(non_empty=True, max_len=200, meaning="the variant's name, unique "
+                                                                                  "(default: variant<i>)")},
+                                extra=_ANY_KEY, meaning="\"dotted.case.key\" = value of this variant"), 1, 10_000,
+                          meaning="named variants: name and \"dotted.case.key\" = value (times the grid)"),
+    "monte_carlo": Table({
+        "grade": Int(1, 11, required=True, note="an ISO 1328-1:2013 flank tolerance class",
+                      meaning="ISO 1328-1:2013 flank tolerance class of every member"),
+        "samples": Int(1, 100_000, required=True, note="the sample size", meaning="the sample size"),
+        "seed": Int(0, 2 ** 32 - 1, default=0, meaning="random seed; sample i does not depend on samples"),
+        "members": List(Str(MEMBERS), 1, len(MEMBERS), default=list(MEMBERS),
+                        meaning="the members whose tooth errors are drawn"),
+    }, meaning="ISO 1328-1 tooth errors drawn per sample (times the variants and the grid)"),
+})
 
 
 @dataclass(frozen=True)
@@ -76,30 +104,15 @@ def set_key(data: dict, key: str, value) -> None:
     data[last] = copy.deepcopy(value)
 
 
-def _check_key(key: str, where: str) -> None:
+def _check_key(key: str, where: str, file: str | None = None) -> None:
     keys = case_keys()
     if key not in keys:
         near = sorted(k for k in keys if k.split(".")[-1] == key.split(".")[-1])
         raise CaseError(where, key, "unknown key to vary: a dotted case key such as 'load.torque_nm' or "
-                        "'pinion.modifications.lead_crowning_um'" + (f" (did you mean {near}?)" if near else ""))
+                        "'pinion.modifications.lead_crowning_um'" + (f" (did you mean {near}?)" if near else ""),
+                        file)
     if key == "load.driver":
-        raise CaseError(where, key, "not variable; vary 'load.torque_nm' or give [study] torque_nm")
-
-
-def _table(data: dict, name: str, file: str) -> dict:
-    raw = data.get(name, {})
-    if not isinstance(raw, dict):
-        raise CaseError(name, raw, "a table", file)
-    return raw
-
-
-def _torques(values, where: str, file: str) -> tuple[float, ...]:
-    if not isinstance(values, list) or not values:
-        raise CaseError(where, values, "a non-empty list of torques in (0, 1e6] N m", file)
-    for i, t in enumerate(values):
-        if isinstance(t, bool) or not isinstance(t, (int, float)) or not 0 < t <= 1e6:
-            raise CaseError(f"{where}[{i}]", t, "a number in (0, 1e6] N m", file)
-    return tuple(float(t) for t in values)
+        raise CaseError(where, key, "not variable; vary 'load.torque_nm' or give [study] torque_nm", file)
 
 
 @dataclass(frozen=True)
@@ -123,74 +136,52 @@ class Study:
     @classmethod
     def from_dict(cls, data: dict, base_dir: str | Path = ".", file: str | None = None) -> "Study":
         """Validate a study given as a dict (as read from TOML); ``base_dir`` resolves the case path."""
-        extra = set(data) - _SECTIONS
-        if extra:
-            raise CaseError(sorted(extra)[0], "...", f"unknown table; allowed are {sorted(_SECTIONS)}", file)
-        st = _table(data, "study", file)
-        if "torques_nm" in st:
+        st = data.get("study")
+        if isinstance(st, dict) and "torques_nm" in st:
             raise CaseError("study.torques_nm", st["torques_nm"], "renamed: write torque_nm = a number or a list of "
                             "numbers (N m), the spelling of the case files", file)
-        unknown = set(st) - {"name", "case", "torque_nm", "description"}
-        if unknown:
-            raise CaseError(f"study.{sorted(unknown)[0]}", st[sorted(unknown)[0]],
-                            "unknown key; allowed are case, name, description, torque_nm", file)
-        if not isinstance(st.get("case"), str):
-            raise CaseError("study.case", st.get("case"), "the base case file (.toml), relative to the study", file)
+        d = check_table(data, CASE, "", file)
+        st = d["study"]
         case_path = Path(base_dir) / st["case"]
         if not case_path.is_file():
             raise CaseError("study.case", st["case"], f"an existing case file (looked for {case_path})", file)
         base = read_toml(case_path)
-        for key, value in _table(data, "set", file).items():
-            _check_key(key, f"set.{key}")
+        for key, value in d["set"].items():
+            _check_key(key, f"set.{key}", file)
             set_key(base, key, value)
         grid = {}
         torques = None
-        for key, values in _table(data, "grid", file).items():
-            _check_key(key, f"grid.{key}")
+        for key, values in d["grid"].items():
+            _check_key(key, f"grid.{key}", file)
             if not isinstance(values, list) or not values:
                 raise CaseError(f"grid.{key}", values, "a non-empty list of values (an empty grid has no variant)",
                                 file)
             if key == "load.torque_nm":
-                torques = _torques(values, f"grid.{key}", file)
+                torques = tuple(List(_TORQUE, 1, 100).check(values, f"grid.{key}", file))
             else:
                 grid[key] = list(values)
-        if "torque_nm" in st:
+        if st["torque_nm"] is not None:
             if torques is not None:
-                raise CaseError("study.torque_nm", st["torque_nm"], "given once: here or as grid 'load.torque_nm'",
-                                file)
-            t = st["torque_nm"]
-            torques = _torques(t if isinstance(t, list) else [t], "study.torque_nm", file)
+                raise CaseError("study.torque_nm", data["study"]["torque_nm"], "given once: here or as grid "
+                                "'load.torque_nm'", file)
+            torques = st["torque_nm"]
         raw_variants = data.get("variants", [])
-        if not isinstance(raw_variants, list) or any(not isinstance(v, dict) for v in raw_variants):
-            raise CaseError("variants", raw_variants, "an array of tables [[variants]]", file)
-        if "variants" in data and not raw_variants:
-            raise CaseError("variants", raw_variants, "at least one [[variants]] table", file)
         names = set()
         for i, v in enumerate(raw_variants):
             name = v.get("name", f"variant{i}")
-            if not isinstance(name, str) or name in names:
+            if name in names:
                 raise CaseError(f"variants[{i}].name", name, "a string naming the variant, unique", file)
             names.add(name)
             for key in v:
                 if key != "name":
-                    _check_key(key, f"variants[{i}].{key}")
+                    _check_key(key, f"variants[{i}].{key}", file)
                     if key.startswith("load."):
                         raise CaseError(f"variants[{i}].{key}", v[key], "not a per-variant key: the torques are a "
                                         "dimension of the study ([study] torque_nm or grid 'load.torque_nm')", file)
         mc = None
-        if "monte_carlo" in data:
-            m = _table(data, "monte_carlo", file)
-            unknown = set(m) - {"grade", "samples", "seed", "members"}
-            if unknown:
-                raise CaseError(f"monte_carlo.{sorted(unknown)[0]}", "...",
-                                "unknown key; allowed are grade, samples, seed, members", file)
-            n = m.get("samples")
-            if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 100000:
-                raise CaseError("monte_carlo.samples", n, "the sample size, an integer in [1, 100000]", file)
-            seed = m.get("seed", 0)
-            if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-                raise CaseError("monte_carlo.seed", seed, "a non-negative integer", file)
-            mc = MonteCarlo(m.get("grade"), n, seed, check_members(m.get("members", list(MEMBERS))))
+        if d["monte_carlo"] is not None:
+            m = d["monte_carlo"]
+            mc = MonteCarlo(m["grade"], m["samples"], m["seed"], check_members(m["members"]))
         base_case = parse_case(base, file=str(case_path))
         if mc is not None:
             from .montecarlo import member_tolerances
@@ -199,7 +190,7 @@ class Study:
         if torques is None:
             torques = tuple(t * 1e-3 for t in base_case.torques)
         base.setdefault("load", {})["torque_nm"] = list(torques)
-        study = cls(st.get("name", Path(file).stem if file else "study"), base, torques, grid,
+        study = cls(st["name"] or (Path(file).stem if file else "study"), base, torques, grid,
                     tuple(raw_variants), mc, file)
         for v in study.expand():                   # every variant must be a valid case
             parse_case(v.case, file=f"{file}: variant {v.name!r} {v.coords}" if file else None)
