@@ -17,7 +17,7 @@ from scipy.interpolate import griddata
 
 from geometry.bevel.tca import RAD_PER_ARCSEC, tca
 
-from ..outputs import write_json_atomic
+from ..outputs import write_json_atomic, write_netcdf_atomic
 from .loaded import BevelPosition
 from .loaded_model import LOADED
 
@@ -155,9 +155,7 @@ def write_outputs(d: Path, case: dict, pair, asm, fid, runs: dict, torques, timi
     ds["pattern"] = (("torque", "Rn", "L"), np.stack([patterns[T][2] for T in tq]),
                      {"units": "MPa", "long_name": "largest pressure over the cycle on the gear flank"})
     ds.attrs.update(case=case["name"], fidelity=fid.name, assembly=str(asm))
-    tmp = d / "results.nc.tmp"
-    ds.to_netcdf(tmp)
-    tmp.replace(d / "results.nc")
+    write_netcdf_atomic(d / "results.nc", ds)
     plots = plot_all(d, case["name"], pair, ds, per, patterns, outlines, paths, runs)
     summary = dict(case=case["name"], fidelity=fid.name,
                    assembly=dict(E_mm=asm.E, P_mm=asm.P, G_mm=asm.G, sigma_deg=float(np.rad2deg(asm.d_sigma))),

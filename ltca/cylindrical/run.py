@@ -182,7 +182,7 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
     for w in head["warnings"][len(warnings):]:
         print(f"ltca run: warning: {w}", file=sys.stderr)
     if write:
-        from ..outputs import staging, write_json_atomic
+        from ..outputs import staging, write_json_atomic, write_netcdf_atomic
         from .report import plot_all, write_vtu
         from .sweep import NC_ENCODING
         if store.dirty:                    # every position was taken over: the log in order
@@ -191,7 +191,7 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
         say(f"positions computed {store.computed}, taken over from the interrupted run {store.taken_over}")
         # every file is written into a staging folder and renamed into place; summary.json last
         with staging(outdir) as stage:
-            all_ds.to_netcdf(stage / "results.nc", engine="h5netcdf", encoding=NC_ENCODING)
+            write_netcdf_atomic(stage / "results.nc", all_ds, NC_ENCODING)  # in memory first: HDF5 aborts on ENOSPC
             plot_all(all_ds, stage, case.name)
             k = int(np.argmax(datasets[0].max_pressure.values))
             r = first[k]
