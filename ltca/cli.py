@@ -227,8 +227,8 @@ def _positions(text: str) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="ltca", description="Finite-element loaded tooth contact analysis of gears.")
-    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    p = _Parser(prog="ltca", description="Finite-element loaded tooth contact analysis of gears.")
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
     r = sub.add_parser("run", help="loaded TCA over a mesh cycle: TE, bearing pattern, load sharing, root stress",
                        description="Loaded tooth contact analysis of a case over one mesh cycle. Writes "
@@ -396,9 +396,62 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def _check_options(a: argparse.Namespace) -> None:
+    """Command-line options validated like case fields: CaseError (one line: option, value, allowed; exit 2)
+    before any work."""
+    import json
+    from pathlib import Path
+
+    from .validation import Int, Num
+    if getattr(a, "max_output_gb", None) is not None:
+        Num(0, 1e4, "GB", lo_open=True).check(a.max_output_gb, "--max-output-gb", None)
+    if a.command == "run" and a.torque is not None:
+        if _is_bevel(a.case):
+            from .bevel.case import check_bevel_torques
+            check_bevel_torques(list(a.torque), "--torque")
+        else:
+            from .case import check_torques
+            check_torques(list(a.torque), "--torque")
+    if a.command == "validate":
+        if a.torque is not None:
+            Num(0, 1e6, "N m", lo_open=True).check(a.torque, "--torque", None)
+        if a.band is not None:
+            Num(0, 1e4, "um", lo_open=True).check(a.band, "--band", None)
+        for opt, lo, hi in (("refine", 0, 8), ("level", 0, 8), ("threads", 1, 256)):
+            if getattr(a, opt) is not None:
+                Int(lo, hi).check(getattr(a, opt), f"--{opt}", None)
+        for i, x in enumerate(a.positions or ()):
+            Num(-360, 360, "deg or cycles").check(x, f"--positions[{i}]", None)
+        if a.merge:
+            try:
+                doc = json.loads(Path(a.merge).read_text(encoding="utf-8"))
+            except OSError as exc:
+                raise CaseError("--merge", a.merge, f"an existing frozen reference JSON file ({exc.strerror})") \
+                    from None
+            except ValueError as exc:        # not JSON, or not UTF-8
+                raise CaseError("--merge", a.merge, f"a frozen reference JSON file (it is not JSON: {exc})") \
+                    from None
+            if not isinstance(doc, dict):
+                raise CaseError("--merge", a.merge, "a frozen reference JSON file (an object with the positions)")
+    if getattr(a, "cache", None):
+        from .outputs import check_out_dir
+        check_out_dir(a.cache, "--cache")
+    if getattr(a, "scheduler", None):
+        from .study.runner import check_scheduler_address
+        check_scheduler_address(a.scheduler)
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with its error as one line (``ltca run: error: argument --positions: ...``), exit status 2."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
+        _check_options(args)
         return int(args.func(args) or 0)
     except CaseError as exc:
         print(f"ltca {args.command}: error: {exc}", file=sys.stderr)

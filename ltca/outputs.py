@@ -133,7 +133,8 @@ def check_out_dir(out: str | Path, option: str = "--out") -> Path:
     """Make sure ``out`` is a folder we can write, before any work; CaseError (exit 2) otherwise."""
     out = Path(out)
     if out.exists() and not out.is_dir():
-        raise CaseError(option, str(out), "a folder for the results, not an existing file")
+        what = "the results" if option == "--out" else "it"
+        raise CaseError(option, str(out), f"a folder for {what}, not an existing file")
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

@@ -136,11 +136,17 @@ def _torques(data: dict, f: str) -> tuple[float, ...]:
     if not isinstance(load, dict) or "torque_nm" not in load:
         return ()
     v = load["torque_nm"]
-    out = (List(_TORQUE, 1, 20).check(v, "load.torque_nm", f) if isinstance(v, list)
-           else [_TORQUE.check(v, "load.torque_nm", f)])
-    if any(x == 0 for x in out):
-        raise CaseError("load.torque_nm", v, "non-zero torques (the sign picks the flank)", f)
-    if len(set(out)) != len(out):
-        raise CaseError("load.torque_nm", v, "distinct torques (each torque is one analysis)", f)
+    out = check_bevel_torques(v, "load.torque_nm", f)
     data["load"] = {**load, "torque_nm": float(out[0])}
+    return out
+
+
+def check_bevel_torques(v, path: str = "load.torque_nm", f: str | None = None) -> tuple[float, ...]:
+    """Bevel pinion torques (N m): a number or a list of 1 to 20 distinct non-zero numbers in [-1e5, 1e5] (the
+    sign picks the flank); ``path`` names the field (or the option, ``--torque``) in the message."""
+    out = (List(_TORQUE, 1, 20).check(v, path, f) if isinstance(v, list) else [_TORQUE.check(v, path, f)])
+    if any(x == 0 for x in out):
+        raise CaseError(path, v, "non-zero torques in [-1e5, 1e5] N m (the sign picks the flank)", f)
+    if len(set(out)) != len(out):
+        raise CaseError(path, v, "distinct torques (each torque is one analysis)", f)
     return tuple(float(x) for x in out)

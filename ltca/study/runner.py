@@ -22,7 +22,7 @@ import uuid
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..errors import ConvergenceError
+from ..errors import CaseError, ConvergenceError
 from ..results import write_json
 from .spec import Study, Variant
 from .store import StudyStore
@@ -39,13 +39,36 @@ def local_cluster_size() -> int:
         return max(1, os.cpu_count() or 1)
 
 
+def check_scheduler_address(address: str) -> str:
+    """``--scheduler``: a Dask scheduler address such as ``tcp://127.0.0.1:8786`` (parsed by Dask itself);
+    :class:`~ltca.errors.CaseError` (exit status 2) otherwise."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+    allowed = "the address of a running Dask scheduler, e.g. tcp://127.0.0.1:8786"
+    if not isinstance(address, str) or not 0 < len(address) <= 500 or any(c.isspace() for c in address):
+        raise CaseError("--scheduler", address, allowed)
+    try:
+        scheme, loc = parse_address(address)
+        if scheme in ("tcp", "tls", "ws", "wss", "ucx"):
+            host, port = parse_host_port(loc)
+            if not host or port is None or not 0 < int(port) < 65536:
+                raise ValueError(f"no host or port in {loc!r}")
+    except (ValueError, TypeError) as exc:
+        raise CaseError("--scheduler", address, f"{allowed} ({exc})") from None
+    return address
+
+
 @contextmanager
 def cluster_client(scheduler: str | None = None, workers: int | None = None):
     """A ``distributed.Client``: of the cluster at ``scheduler``, or of a new LocalCluster of ``workers``
     single-threaded worker processes (default :func:`local_cluster_size`), closed on exit."""
     from distributed import Client, LocalCluster
     if scheduler:
-        client = Client(scheduler, timeout="30s")
+        check_scheduler_address(scheduler)
+        try:
+            client = Client(scheduler, timeout="30s")
+        except (OSError, TimeoutError) as exc:
+            raise CaseError("--scheduler", scheduler, "the address of a running Dask scheduler (none answered "
+                            f"within 30 s: {' '.join(str(exc).split())[:200]})") from None
         try:
             yield client
         finally:

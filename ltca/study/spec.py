@@ -134,10 +134,18 @@ class Study:
         if unknown:
             raise CaseError(f"study.{sorted(unknown)[0]}", st[sorted(unknown)[0]],
                             "unknown key; allowed are case, name, description, torque_nm", file)
-        if not isinstance(st.get("case"), str):
-            raise CaseError("study.case", st.get("case"), "the base case file (.toml), relative to the study", file)
+        if not isinstance(st.get("case"), str) or not 0 < len(st["case"]) <= 1000 or "\0" in st["case"]:
+            raise CaseError("study.case", st.get("case"), "the base case file (.toml), relative to the study: a path "
+                            "of 1 to 1000 characters", file)
+        if "name" in st and (not isinstance(st["name"], str) or not 0 < len(st["name"].strip()) <= 200):
+            raise CaseError("study.name", st["name"], "a non-empty string of at most 200 characters", file)
         case_path = Path(base_dir) / st["case"]
-        if not case_path.is_file():
+        try:
+            found = case_path.is_file()
+        except OSError as exc:            # a path the file system refuses (a name too long)
+            raise CaseError("study.case", st["case"], f"a case file path the file system accepts ({exc.strerror})",
+                            file) from None
+        if not found:
             raise CaseError("study.case", st["case"], f"an existing case file (looked for {case_path})", file)
         base = read_toml(case_path)
         for key, value in _table(data, "set", file).items():
@@ -167,9 +175,10 @@ class Study:
             raise CaseError("variants", raw_variants, "at least one [[variants]] table", file)
         names = set()
         for i, v in enumerate(raw_variants):
-            name = v.get("name", f"variant{i}")
-            if not isinstance(name, str) or name in names:
-                raise CaseError(f"variants[{i}].name", name, "a string naming the variant, unique", file)
+            name = v.get("name")
+            if not isinstance(name, str) or name in names or not 0 < len(name.strip()) <= 200:
+                raise CaseError(f"variants[{i}].name", name, "required: a non-empty string of at most 200 characters "
+                                "naming the variant, unique", file)
             names.add(name)
             for key in v:
                 if key != "name":
