@@ -107,6 +107,7 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
               torques=None, paraview_steps=10) -> dict:
     from ..outputs import PositionStore, RunDir, signature_of
     from ..sizing import check_run_size
+    from .limits import check_limits
     from .warnings import check_contact, convergence_warnings, design_warnings
     t_start = time.perf_counter()
     case = load_case(case_path)
@@ -126,6 +127,7 @@ def _run_case(stack, case_path, out, fidelity, positions, progress, cache, write
     from .sampling import default_positions, sampling_warnings
     n_pos = positions or (default_positions(model) if case.positions_auto else case.positions)
     check_run_size(case, n_pos, FIDELITIES[fid_name], max_output_gb)
+    check_limits(model, FIDELITIES[fid_name], fid_name, str(case_path))   # body size, edge zones: before any FE
     store = None
     if write:           # the output folder: checked, locked and cleaned before any FE work
         rd = stack.enter_context(RunDir(out, f"ltca run {case_path}", signature_of(
