@@ -2,7 +2,8 @@
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
-status 3 and its residual.
+status 3 and its residual. ``ltca optimise`` whose constraints no candidate meets ends with status 4
+(:data:`NO_FEASIBLE_DESIGN`): the least infeasible design is written, marked ``feasible: false``.
 """
 from __future__ import annotations
 
@@ -11,7 +12,10 @@ import sys
 
 from .errors import CaseError, ConvergenceError
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "build_parser", "NO_FEASIBLE_DESIGN"]
+
+#: exit status of ``ltca optimise`` when no candidate meets the constraints
+NO_FEASIBLE_DESIGN = 4
 
 
 def _planetary(path: str) -> bool:
@@ -185,9 +189,20 @@ def _cmd_optimise(a: argparse.Namespace) -> int:
                    workers=a.workers)
     import json
     s = res.summary
-    print(json.dumps({"optimum": s["optimum"]["values"], "objective_arcsec": {
+    feasible = bool(s["optimum"].get("feasible", True))
+    best = "optimum" if feasible else "least_infeasible"
+    print(json.dumps({best: s["optimum"]["values"], "feasible": feasible, "objective_arcsec": {
         k: s[k]["objective_arcsec"] for k in ("baseline", "start", "optimum")}, "evaluations": s["evaluations"],
         "timings_s": s["timings_s"]}, indent=1))
+    if not feasible:
+        c = s.get("constraints", {})
+        limits = ", ".join(f"{k} {v:g}" for k, v in c.items() if isinstance(v, (int, float)) and not
+                           isinstance(v, bool)) or "the [design.constraints]"
+        n = s["evaluations"].get("search", "?") if isinstance(s["evaluations"], dict) else s["evaluations"]
+        print(f"ltca optimise: no feasible design: none of the {n} candidates searched meets the constraints "
+              f"({limits}); {res.out}/design.json holds the least infeasible one (feasible: false); relax "
+              "[design.constraints] or widen [design.variables]", file=sys.stderr)
+        return NO_FEASIBLE_DESIGN
     return 0
 
 
