@@ -75,3 +75,20 @@ def test_study_file_fields(tmp_path, capsys, text, field):
     assert main(["study", str(p), "--out", str(tmp_path / "o"), "--workers", "1"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and f"'{field}'" in err[0], err
+
+
+def test_impossible_study_variant_one_line_no_dask_noise(tmp_path):
+    """A variant the geometry cannot make (a pinion profile shift whose tips reach the gear root at the case's
+    centre distance): exit 2 and only the one line, no Dask worker traceback or dashboard warning."""
+    import os
+    import subprocess
+    import sys
+    p = tmp_path / "impossible.toml"
+    p.write_text(f'[study]\ncase = "{FZG}"\ntorque_nm = 100\n[set]\n"analysis.positions" = 2\n'
+                 '"analysis.fidelity" = "coarse"\n[[variants]]\nname = "pointed"\n"pinion.profile_shift" = 1.5\n')
+    proc = subprocess.run([sys.executable, "-m", "ltca.cli", "study", str(p), "--out", str(tmp_path / "o"),
+                           "--workers", "1", "--no-plots", "--quiet"], capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=300)
+    lines = proc.stderr.strip().splitlines()
+    assert proc.returncode == 2 and len(lines) == 1, proc.stderr
+    assert "'assembly.centre_distance_mm'" in lines[0], lines

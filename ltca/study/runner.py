@@ -26,7 +26,7 @@ from ..errors import CaseError, ConvergenceError
 from ..results import write_json
 from .spec import Study, Variant
 from .store import StudyStore
-from .tasks import compute_compliance, plan_variant, solve_point
+from .tasks import compute_compliance, plan_variant, solve_point, unwrap
 
 __all__ = ["run_study", "local_cluster_size", "cluster_client"]
 
@@ -77,7 +77,8 @@ def cluster_client(scheduler: str | None = None, workers: int | None = None):
     n = workers or local_cluster_size()
     # one task at a time per worker; BLAS / PARDISO threads as in ``ltca run`` (the contact solve limits its
     # BLAS to one thread itself), so that a lone compliance task still uses every core
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+    # the dashboard on a free port (":0"): the default port taken by another cluster is a warning on the console
+    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
             Client(cluster) as client:
         yield client
 
@@ -122,7 +123,7 @@ def _execute(client, study: Study, store: StudyStore, todo: dict, prog: _Progres
     for f in ac:
         kind, obj, extra = meta.pop(f.key)
         if kind == "plan":
-            vplan = f.result()
+            vplan = unwrap(f.result())
             cf = compliance.get(vplan.key)
             if cf is None:
                 kept = store.load_compliance(vplan.key)
@@ -142,14 +143,14 @@ def _execute(client, study: Study, store: StudyStore, todo: dict, prog: _Progres
                 meta[pf.key] = ("point", obj, t)
                 ac.add(pf)
         elif kind == "compliance":
-            comp = f.result()
+            comp = unwrap(f.result())
             store.save_compliance(obj, comp)
             stats["compliance_computed"] += 1
             stats["compliance_seconds"].append(round(comp.seconds, 3))
             prog.say(f"geometry {obj}: compliance computed in {comp.seconds:.1f} s (worker pid {comp.pid})")
         else:
             try:
-                ds, head = f.result()
+                ds, head = unwrap(f.result())
             except ConvergenceError as exc:
                 stats["failed"].append({"variant": obj.id, "torque_nm": extra, "error": str(exc)})
                 prog.say(f"variant {obj.id} at {extra:g} N m: {exc}")
