@@ -418,6 +418,10 @@ def _check_options(a: argparse.Namespace) -> None:
     from pathlib import Path
 
     from .validation import Int, Num
+    if getattr(a, "workers", None) is not None:
+        Int(1, 256, note="worker processes").check(a.workers, "--workers", None)
+    if getattr(a, "repeat", None) is not None:
+        Int(1, 1000, note="cold runs").check(a.repeat, "--repeat", None)
     if getattr(a, "max_output_gb", None) is not None:
         Num(0, 1e4, "GB", lo_open=True).check(a.max_output_gb, "--max-output-gb", None)
     if a.command == "run" and a.torque is not None:
@@ -437,7 +441,7 @@ def _check_options(a: argparse.Namespace) -> None:
                 Int(lo, hi).check(getattr(a, opt), f"--{opt}", None)
         for i, x in enumerate(a.positions or ()):
             Num(-360, 360, "deg or cycles").check(x, f"--positions[{i}]", None)
-        if a.merge:
+        if a.merge is not None:
             try:
                 doc = json.loads(Path(a.merge).read_text(encoding="utf-8"))
             except OSError as exc:
@@ -448,10 +452,12 @@ def _check_options(a: argparse.Namespace) -> None:
                     from None
             if not isinstance(doc, dict):
                 raise CaseError("--merge", a.merge, "a frozen reference JSON file (an object with the positions)")
-    if getattr(a, "cache", None):
+    if getattr(a, "cache", None) is not None:
+        if not a.cache.strip():
+            raise CaseError("--cache", a.cache, "a folder for the mesh cache (a non-empty path)")
         from .outputs import check_out_dir
         check_out_dir(a.cache, "--cache")
-    if getattr(a, "scheduler", None):
+    if getattr(a, "scheduler", None) is not None:
         from .study.runner import check_scheduler_address
         check_scheduler_address(a.scheduler)
 

@@ -109,8 +109,18 @@ def write_bytes_atomic(path: str | Path, data: bytes | memoryview) -> None:
 
 
 def netcdf_bytes(ds, encoding: dict | None = None) -> bytes:
-    """A dataset as the bytes of a netCDF-4 (HDF5) file, built in memory by h5netcdf."""
-    return bytes(ds.to_netcdf(engine="h5netcdf", encoding=encoding or {}))
+    """A dataset as the bytes of a netCDF-4 (HDF5) file, built in memory by h5netcdf.
+
+    Under a Dask distributed client (a study's), xarray would guard the write with a distributed lock named after
+    the target, which an in-memory target cannot be: the write runs on the synchronous scheduler (the data are in
+    memory already)."""
+    try:
+        import dask
+        scheduler = dask.config.set(scheduler="synchronous")
+    except ImportError:              # xarray without dask
+        scheduler = contextlib.nullcontext()
+    with scheduler:
+        return bytes(ds.to_netcdf(engine="h5netcdf", encoding=encoding or {}))
 
 
 def write_netcdf_atomic(path: str | Path, ds, encoding: dict | None = None) -> int:

@@ -8,8 +8,6 @@ from __future__ import annotations
 
 import re
 
-import pytest
-
 from conftest import CASES
 from ltca.cli import NO_FEASIBLE_DESIGN, main
 

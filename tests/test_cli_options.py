@@ -47,8 +47,7 @@ def _cases(tmp):
 def test_bad_options_one_line_exit_2(tmp_path, capsys):
     for argv, option in _cases(tmp_path):
         t0 = time.perf_counter()
-        status = main([*argv, "--out", str(tmp_path / "out")] if argv[0] != "validate" else
-                      [*argv, "--out", str(tmp_path / "out")])
+        status = main([*argv, "--out", str(tmp_path / "out")])
         err = capsys.readouterr().err
         lines = err.strip().splitlines()
         assert status == 2, (argv, err)

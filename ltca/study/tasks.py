@@ -85,7 +85,7 @@ def _user_errors(fn):
     def task(*args, **kwargs):
         try:
             return fn(*args, **kwargs)
-        except Exception as exc:  # noqa: BLE001 - sorted by the command line's own rule
+        except Exception as exc:      # sorted by the command line's own rule (ltca.exit_codes)
             from ..exit_codes import classify
             if isinstance(exc, CaseError):
                 return TaskFailure(2, str(exc))
