@@ -2,7 +2,8 @@
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
-status 3 and its residual.
+status 3 and its residual. ``ltca optimise`` whose constraints no candidate meets ends with status 4
+(:data:`NO_FEASIBLE_DESIGN`): the least infeasible design is written, marked ``feasible: false``.
 """
 from __future__ import annotations
 
@@ -13,7 +14,10 @@ import sys
 from .errors import CaseError, ConvergenceError
 from .shipped import case_path
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "build_parser", "NO_FEASIBLE_DESIGN"]
+
+#: exit status of ``ltca optimise`` when no candidate meets the constraints
+NO_FEASIBLE_DESIGN = 4
 
 
 def _planetary(path: str) -> bool:
@@ -175,9 +179,20 @@ def _cmd_optimise(a: argparse.Namespace) -> int:
                    workers=a.workers)
     import json
     s = res.summary
-    print(json.dumps({"optimum": s["optimum"]["values"], "objective_arcsec": {
+    feasible = bool(s["optimum"].get("feasible", True))
+    best = "optimum" if feasible else "least_infeasible"
+    print(json.dumps({best: s["optimum"]["values"], "feasible": feasible, "objective_arcsec": {
         k: s[k]["objective_arcsec"] for k in ("baseline", "start", "optimum")}, "evaluations": s["evaluations"],
         "timings_s": s["timings_s"]}, indent=1))
+    if not feasible:
+        c = s.get("constraints", {})
+        limits = ", ".join(f"{k} {v:g}" for k, v in c.items() if isinstance(v, (int, float)) and not
+                           isinstance(v, bool)) or "the [design.constraints]"
+        n = s["evaluations"].get("search", "?") if isinstance(s["evaluations"], dict) else s["evaluations"]
+        print(f"ltca optimise: no feasible design: none of the {n} candidates searched meets the constraints "
+              f"({limits}); {res.out}/design.json holds the least infeasible one (feasible: false); relax "
+              "[design.constraints] or widen [design.variables]", file=sys.stderr)
+        return NO_FEASIBLE_DESIGN
     return 0
 
 
@@ -221,8 +236,8 @@ def _positions(text: str) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="ltca", description="Finite-element loaded tooth contact analysis of gears.")
-    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    p = _Parser(prog="ltca", description="Finite-element loaded tooth contact analysis of gears.")
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND", parser_class=_Parser)
 
     r = sub.add_parser("run", help="loaded TCA over a mesh cycle: TE, bearing pattern, load sharing, root stress",
                        description="Loaded tooth contact analysis of a case over one mesh cycle. Writes "
@@ -412,12 +427,71 @@ def _resolve_files(a: argparse.Namespace) -> None:
             a.study = str(study_path(a.study))
 
 
+def _check_options(a: argparse.Namespace) -> None:
+    """Command-line options validated like case fields: CaseError (one line: option, value, allowed; exit 2)
+    before any work."""
+    import json
+    from pathlib import Path
+
+    from .validation import Int, Num
+    if getattr(a, "workers", None) is not None:
+        Int(1, 256, note="worker processes").check(a.workers, "--workers", None)
+    if getattr(a, "repeat", None) is not None:
+        Int(1, 1000, note="cold runs").check(a.repeat, "--repeat", None)
+    if getattr(a, "max_output_gb", None) is not None:
+        Num(0, 1e4, "GB", lo_open=True).check(a.max_output_gb, "--max-output-gb", None)
+    if a.command == "run" and a.torque is not None:
+        if _is_bevel(a.case):
+            from .bevel.case import check_bevel_torques
+            check_bevel_torques(list(a.torque), "--torque")
+        else:
+            from .case import check_torques
+            check_torques(list(a.torque), "--torque")
+    if a.command == "validate":
+        if a.torque is not None:
+            Num(0, 1e6, "N m", lo_open=True).check(a.torque, "--torque", None)
+        if a.band is not None:
+            Num(0, 1e4, "um", lo_open=True).check(a.band, "--band", None)
+        for opt, lo, hi in (("refine", 0, 8), ("level", 0, 8), ("threads", 1, 256)):
+            if getattr(a, opt) is not None:
+                Int(lo, hi).check(getattr(a, opt), f"--{opt}", None)
+        for i, x in enumerate(a.positions or ()):
+            Num(-360, 360, "deg or cycles").check(x, f"--positions[{i}]", None)
+        if a.merge is not None:
+            try:
+                doc = json.loads(Path(a.merge).read_text(encoding="utf-8"))
+            except OSError as exc:
+                raise CaseError("--merge", a.merge, f"an existing frozen reference JSON file ({exc.strerror})") \
+                    from None
+            except ValueError as exc:        # not JSON, or not UTF-8
+                raise CaseError("--merge", a.merge, f"a frozen reference JSON file (it is not JSON: {exc})") \
+                    from None
+            if not isinstance(doc, dict):
+                raise CaseError("--merge", a.merge, "a frozen reference JSON file (an object with the positions)")
+    if getattr(a, "cache", None) is not None:
+        if not a.cache.strip():
+            raise CaseError("--cache", a.cache, "a folder for the mesh cache (a non-empty path)")
+        from .outputs import check_out_dir
+        check_out_dir(a.cache, "--cache")
+    if getattr(a, "scheduler", None) is not None:
+        from .study.runner import check_scheduler_address
+        check_scheduler_address(a.scheduler)
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with its error as one line (``ltca run: error: argument --positions: ...``), exit status 2."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def main(argv: list[str] | None = None) -> int:
     import matplotlib
     matplotlib.use("Agg")       # the command line writes files; the library never picks a backend
     args = build_parser().parse_args(argv)
     try:
         _resolve_files(args)
+        _check_options(args)
         return int(args.func(args) or 0)
     except CaseError as exc:
         print(f"ltca {args.command}: error: {exc}", file=sys.stderr)

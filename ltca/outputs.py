@@ -8,6 +8,8 @@
   read back as ``interrupted``).
 - :func:`atomic_path`, :func:`write_json_atomic`: every file goes to a temporary name and is renamed into place,
   so no truncated file ever carries a final name.
+- :func:`write_netcdf_atomic`: a dataset serialised to netCDF in memory and written as bytes (the HDF5 library is
+  never handed a file on a disk that can fill: its write errors abort the process), after a free-space check.
 - :class:`PositionStore`: each finished position kept as a pickle (atomic) plus one JSON line, so ``--resume``
   takes them over and computes only the rest.
 Imports nothing of ours but :mod:`ltca.errors`.
@@ -16,6 +18,7 @@ from __future__ import annotations
 
 import contextlib
 import datetime as _dt
+import errno
 import hashlib
 import json
 import math
@@ -28,8 +31,10 @@ from typing import Any, Iterator
 
 from .errors import CaseError
 
-__all__ = ["check_out_dir", "RunDir", "atomic_path", "write_json_atomic", "PositionStore", "finite_json",
-           "read_status", "OUTPUTS", "staging", "signature_of", "write_json", "write_bytes_atomic"]
+__all__ = ["check_out_dir", "RunDir", "atomic_path", "write_json_atomic", "write_bytes_atomic", "write_netcdf_atomic",
+           "netcdf_bytes", "check_free_space", "PositionStore", "finite_json", "read_status", "OUTPUTS", "staging",
+           "signature_of", "write_json"]
+
 
 #: results of ``ltca run`` that a fresh start removes (stale results of an earlier run)
 OUTPUTS = ("summary.json", "results.nc", "te.png", "load_sharing.png", "bearing_pattern.png", "root_stress.png",
@@ -76,10 +81,58 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
         raise
 
 
-def write_bytes_atomic(path: str | Path, data: bytes) -> None:
+def check_free_space(path: str | Path, n_bytes: int) -> None:
+    """Raise ``OSError(ENOSPC)`` naming ``path`` when its file system has less room than ``n_bytes`` in whole
+    blocks plus one block (counted as an unprivileged user sees it: ``f_bavail``)."""
+    folder = Path(path).parent
+    try:
+        st = os.statvfs(folder)
+    except OSError:
+        return                   # no statistics (a special file system): the write itself is the check
+    free, block = st.f_bavail * st.f_frsize, max(st.f_frsize, 512)
+    if -(-n_bytes // block) * block + block > free:       # whole blocks, and one for the directory entry
+        raise OSError(errno.ENOSPC, f"No space left on device ({n_bytes / 1e6:.3f} MB to write, "
+                      f"{free / 1e6:.3f} MB free)", str(path))
+
+
+def write_bytes_atomic(path: str | Path, data: bytes | memoryview) -> None:
+    """``data`` written to a temporary name beside ``path`` (after a free-space check), flushed, renamed into place;
+    a full disk at any point raises ``OSError(ENOSPC)`` and leaves nothing under ``path``."""
+    check_free_space(path, len(data))
     with atomic_path(path) as tmp:
         with open(tmp, "wb") as fh:
-            fh.write(data)
+            view = memoryview(data)
+            while view:          # a short write (a disk filling meanwhile) is an error, never a truncated file
+                n = fh.write(view)
+                if not n:
+                    raise OSError(errno.ENOSPC, "No space left on device (short write)", str(path))
+                view = view[n:]
+
+
+def netcdf_bytes(ds, encoding: dict | None = None) -> bytes:
+    """A dataset as the bytes of a netCDF-4 (HDF5) file, built in memory by h5netcdf.
+
+    Under a Dask distributed client (a study's), xarray would guard the write with a distributed lock named after
+    the target, which an in-memory target cannot be: the write runs on the synchronous scheduler (the data are in
+    memory already)."""
+    try:
+        import dask
+        scheduler = dask.config.set(scheduler="synchronous")
+    except ImportError:              # xarray without dask
+        scheduler = contextlib.nullcontext()
+    with scheduler:
+        return bytes(ds.to_netcdf(engine="h5netcdf", encoding=encoding or {}))
+
+
+def write_netcdf_atomic(path: str | Path, ds, encoding: dict | None = None) -> int:
+    """A dataset written as netCDF-4 to ``path``: serialised in memory, then written with
+    :func:`write_bytes_atomic` (free-space check, temporary name, rename). Returns the size in bytes.
+
+    The HDF5 library never writes to the disk itself: on a full disk its error handling aborts the process
+    (a segmentation fault) instead of raising; here a full disk is an ``OSError(ENOSPC)`` like any other."""
+    data = netcdf_bytes(ds, encoding)
+    write_bytes_atomic(path, data)
+    return len(data)
 
 
 def write_json_atomic(path: str | Path, data: Any) -> None:
@@ -96,7 +149,8 @@ def check_out_dir(out: str | Path, option: str = "--out") -> Path:
     """Make sure ``out`` is a folder we can write, before any work; CaseError (exit 2) otherwise."""
     out = Path(out)
     if out.exists() and not out.is_dir():
-        raise CaseError(option, str(out), "a folder for the results, not an existing file")
+        what = "the results" if option == "--out" else "it"
+        raise CaseError(option, str(out), f"a folder for {what}, not an existing file")
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -188,6 +242,19 @@ class RunDir:
         self.status.update(kw, updated=_now())
         write_json_atomic(self.out / STATUS, self.status)
 
+    def _set_final(self, **kw) -> None:
+        """The closing status, also on a disk with no block left: written atomically if it can be, else over the
+        existing run.json in place (its block is reused; the run is over, so no reader sees a mix)."""
+        try:
+            self.set(**kw)
+        except OSError:
+            data = json.dumps(finite_json(self.status), indent=2, allow_nan=False).encode()
+            with open(self.out / STATUS, "r+b") as fh:
+                fh.truncate(0)
+                fh.write(data)
+                fh.flush()
+                os.fsync(fh.fileno())
+
     def __enter__(self) -> "RunDir":
         self._acquire()
         try:
@@ -233,10 +300,10 @@ class RunDir:
             if typ is None:
                 self.set(status="complete", finished=_now())
             elif issubclass(typ, (KeyboardInterrupt, _Terminated)):
-                self.set(status="interrupted", finished=_now(), error="interrupted (resume with --resume)")
+                self._set_final(status="interrupted", finished=_now(), error="interrupted (resume with --resume)")
             else:
                 with contextlib.suppress(OSError):
-                    self.set(status="failed", finished=_now(), error=f"{typ.__name__}: {str(exc)[:300]}")
+                    self._set_final(status="failed", finished=_now(), error=f"{typ.__name__}: {str(exc)[:300]}")
         except OSError:
             pass
         finally:

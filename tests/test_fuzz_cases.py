@@ -1,7 +1,11 @@
 """Seeded fuzz of every shipped case file: >= 300 mutations per run through each command's validation
 and, where cheap, the geometry and the unloaded TCA (``ltca tca --positions 3``), ``ltca chain`` and ``ltca budget``
 (without its backlash pair, which costs seconds). Fails on any traceback (exit 1), any hang over 20 s and any exit 0
-whose outputs hold NaN/inf or lie outside physical bounds. The count per outcome is printed (``-s``)."""
+whose outputs hold NaN/inf or lie outside physical bounds. The count per outcome is printed (``-s``).
+
+A second seeded fuzz gives every validated command-line option of every command values good and bad (NaN, inf,
+negative, huge, not a number, empty, files that are not folders or not JSON), the commands' work replaced by a stub:
+a valid value passes, an invalid one ends in exit 2 with one line (``LTCA_FUZZ_OPTIONS`` values, default 240)."""
 from __future__ import annotations
 
 import contextlib
@@ -252,4 +256,100 @@ def test_fuzz_shipped_cases(tmp_path, capsys):
     with capsys.disabled():
         print(f"\nfuzz (seed {SEED}, {N_MUTATIONS} mutations of {len(bases)} case files): {dict(counts)}")
     assert sum(counts.values()) >= 300
+    assert not failures, "\n".join(failures[:20])
+
+
+# ----------------------------------------------------------------------------------- command-line options #
+def _num(lo, hi, lo_open=False):
+    def ok(text):
+        try:
+            v = float(text)
+        except ValueError:
+            return False
+        return math.isfinite(v) and (v > lo if lo_open else v >= lo) and v <= hi
+    return ok
+
+
+def _int(lo, hi):
+    def ok(text):
+        try:
+            v = int(text)
+        except ValueError:
+            return False
+        return lo <= v <= hi
+    return ok
+
+
+VALUES = ["nan", "inf", "-inf", "-1", "0", "1", "3", "2.5", "100", "1e6", "1e400", "99999999999", "abc", "",
+          "-0.0", "0x10", "1_000", "  7 "]
+N_OPTIONS = int(os.environ.get("LTCA_FUZZ_OPTIONS", 240))
+
+
+def _option_table(tmp: Path) -> list[tuple[str, list[str], str, callable, list[str]]]:
+    """(command, argv before the option, option, valid(text), extra values) of every validated option."""
+    fzg, study = str(CASES / "fzg_c14.toml"), str(CASES.parent / "studies" / "fzg_torque_misalignment.toml")
+    afile = tmp / "afile"
+    afile.write_text("x")
+    notjson = tmp / "bad.json"
+    notjson.write_text("{")
+    goodjson = tmp / "good.json"
+    goodjson.write_text('{"positions": []}')
+    paths = [str(afile), str(tmp / "cache_dir"), str(notjson), str(goodjson), str(tmp / "missing.json")]
+    valid_dir = lambda t: t != str(afile) and t not in ("",)      # noqa: E731
+    return [
+        ("run", [fzg], "--positions", _int(1, 2000), []),
+        ("run", [fzg], "--torque", _num(1e-3, 1e6), []),
+        ("run", [fzg], "--max-output-gb", _num(0, 1e4, lo_open=True), []),
+        ("run", [fzg], "--paraview-steps", _int(0, 100000), []),
+        ("run", [fzg], "--cache", valid_dir, paths[:2]),
+        ("tca", [fzg], "--positions", _int(1, 2000), []),
+        ("study", [study], "--workers", _int(1, 256), []),
+        ("study", [study], "--scheduler", lambda t: False, ["tcp://", "tcp://a b:1", "tcp://127.0.0.1:0",
+                                                           "tcp://[::1:80", "x" * 600]),
+        ("optimise", [str(CASES / "fzg_c14_optimise.toml")], "--workers", _int(1, 256), []),
+        ("bench", [fzg], "--repeat", _int(1, 1000), []),
+        ("validate", ["--reference", "calculix"], "--threads", _int(1, 256), []),
+        ("validate", ["--reference", "calculix"], "--refine", _int(0, 8), []),
+        ("validate", ["--reference", "calculix"], "--level", _int(0, 8), []),
+        ("validate", ["--reference", "calculix"], "--band", _num(0, 1e4, lo_open=True), []),
+        ("validate", ["--reference", "calculix"], "--torque", _num(0, 1e6, lo_open=True), []),
+        ("validate", ["--reference", "calculix"], "--positions", _num(-360, 360), []),
+        ("validate", ["--reference", "calculix-whole", "--positions", "0"], "--merge",
+         lambda t: t == str(goodjson), paths),
+    ]
+
+
+def test_fuzz_command_line_options(tmp_path, monkeypatch, capsys):
+    """Seeded: random values for every validated option of every command, the command's work replaced by a stub
+    (only the validation runs). A valid value must pass (exit 0), an invalid one must end in exit 2 with one line;
+    no traceback, no silent acceptance of NaN, inf, negative or absurd values."""
+    import ltca.cli as cli
+    for name in ("_cmd_run", "_cmd_tca", "_cmd_study", "_cmd_optimise", "_cmd_bench", "_cmd_validate"):
+        monkeypatch.setattr(cli, name, lambda a: 0)
+    rng = random.Random(SEED)
+    table = _option_table(tmp_path)
+    counts: Counter = Counter()
+    failures = []
+    for i in range(N_OPTIONS):
+        cmd, head, opt, valid, extra = table[i % len(table)]
+        value = rng.choice(VALUES + extra)
+        argv = [cmd, *head, opt, value] + ([] if cmd == "bench" else ["--out", str(tmp_path / f"o{i}")])
+        status, out, err = _run(argv)
+        ok = valid(value)
+        lines = err.strip().splitlines()
+        if status == 0:
+            counts["exit 0"] += 1
+            if not ok:
+                failures.append(f"{opt} {value!r}: accepted (exit 0)")
+        elif status == 2:
+            counts["exit 2"] += 1
+            if ok:
+                failures.append(f"{opt} {value!r}: refused although valid: {err.strip()[:200]}")
+            if len(lines) != 1 or "Traceback" in err:
+                failures.append(f"{opt} {value!r}: exit 2 message not one line: {err[:300]!r}")
+        else:
+            counts[f"exit {status}"] += 1
+            failures.append(f"{opt} {value!r}: exit {status}: {err[-400:]!r}")
+    with capsys.disabled():
+        print(f"\noption fuzz (seed {SEED}, {N_OPTIONS} values over {len(table)} options): {dict(counts)}")
     assert not failures, "\n".join(failures[:20])

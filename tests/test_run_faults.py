@@ -133,11 +133,13 @@ def test_read_only_out_before_any_fe_work(tmp_path, capsys):
             subprocess.run(["umount", str(ro)])
 
 
-def test_full_disk_leaves_no_truncated_file(tmp_path, cache):
+# the disk fills: writing the positions, writing results.nc, writing the VTU files and the report
+@pytest.mark.parametrize("size", ["100k", "120k", "600k", "2600k"])
+def test_full_disk_leaves_no_truncated_file(tmp_path, cache, size):
     if os.geteuid() != 0:
         pytest.skip("mounting a tmpfs needs root")
     full = tmp_path / "full"
-    if not _mount_tmpfs(full, "size=600k"):
+    if not _mount_tmpfs(full, f"size={size}"):
         pytest.skip("cannot mount a tmpfs here")
     try:
         out = full / "out"

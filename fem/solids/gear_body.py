@@ -313,7 +313,8 @@ def _label(spec: GearBodySpec, volumes: list[int], refs) -> dict[int, str]:
         p = rot2(np.array([[x, y]]), -spec.lead_twist * zc)[0]
         dist = curves.distance(p)
         i = int(np.argmin(dist))
-        if dist[i] > 2e-2:
+        # the swept surfaces follow the section polylines within their chord error, which grows with the radius
+        if dist[i] > max(2e-2, 2e-5 * float(np.hypot(x, y))):
             raise RuntimeError(f"surface {s} matches no transverse curve (distance {dist[i]:.3g} mm)")
         names[s] = refs[i][0]
     return names

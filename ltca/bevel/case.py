@@ -15,10 +15,10 @@ from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
-from ..validation import DesignError, Int, Num, OneOrList, Str, Table, check_kind, check_table
+from ..validation import DesignError, Int, List, Num, OneOrList, Str, Table, check_kind, check_table
 from .model import BevelMounting
 
-__all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data"]
+__all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data", "check_bevel_torques"]
 
 # the bevel kind in the one validation layer (ltca.validation); ranges are those the cradle model and the
 # Cao et al. (2008) synthesis are known to handle (outside them the Newton solves of generation and TCA lose the flank)
@@ -160,3 +160,14 @@ def _mounting(m: dict, blank, f: str | None) -> BevelMounting:
                         f"in [{lo:.2f}, {hi:.2f}] mm (0.3 to 20 whole depths behind the gear's heel root at "
                         f"{z_heel:.2f} mm from the pitch apex)", f)
     return out
+
+
+def check_bevel_torques(v, path: str = "load.torque_nm", f: str | None = None) -> tuple[float, ...]:
+    """Bevel pinion torques (N m): a number or a list of 1 to 20 distinct non-zero numbers in [-1e5, 1e5] (the
+    sign picks the flank); ``path`` names the field (or the option, ``--torque``) in the message."""
+    out = (List(_TORQUE, 1, 20).check(v, path, f) if isinstance(v, list) else [_TORQUE.check(v, path, f)])
+    if any(x == 0 for x in out):
+        raise CaseError(path, v, "non-zero torques in [-1e5, 1e5] N m (the sign picks the flank)", f)
+    if len(set(out)) != len(out):
+        raise CaseError(path, v, "distinct torques (each torque is one analysis)", f)
+    return tuple(float(x) for x in out)

@@ -182,13 +182,13 @@ def bevel_dataset(case, pair, asm, fid, runs: dict, torques, timings: dict) -> t
 
 def write_files(d: Path, case, pair, ds: xr.Dataset, plotdata: dict, runs: dict, torques) -> list[str]:
     """results.nc, the bearing-pattern VTU per torque and the plots of a bevel run, into the folder ``d``."""
-    from ..outputs import write_bytes_atomic
+    from ..outputs import write_netcdf_atomic
     from .plots import plot_all
     for side, rr in runs.items():
         for T in torques:
             if T in rr:
                 _write_vtu(d / f"bearing_pattern_{T:g}Nm.vtu", rr[T])
-    write_bytes_atomic(d / "results.nc", ds.to_netcdf(engine="h5netcdf"))
+    write_netcdf_atomic(d / "results.nc", ds)            # in memory first: HDF5 aborts on ENOSPC
     return plot_all(d, case.name, pair, ds, plotdata["per"], plotdata["patterns"], plotdata["outlines"],
                     plotdata["paths"], runs)
 

@@ -13,7 +13,7 @@ from geometry.bevel.generation import standard_gear_cut
 from geometry.bevel.machine import MemberCut
 from geometry.bevel.generation import generate_member, surface_state
 from geometry.bevel.separation import separation_tca
-from geometry.bevel.tca import RAD_PER_ARCSEC, BevelPair, tca, to_pitch_coords
+from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, tca, to_pitch_coords
 from geometry.bevel.undercut import undercut_check
 
 from geometry.bevel.generation import MeshingError
@@ -75,9 +75,13 @@ def run_bevel_tca(case_path: str, out: str | None = None) -> dict:
     except (ContactError, MeshingError, ValueError) as exc:
         # the user's design (targets, blank, cutter) has no solution in the cradle model: exit 2 naming the inputs
         side = "working" if "concave" in str(exc) else "coast" if "convex" in str(exc) else "working/coast"
+        asm = case.get("assembly") or {}
+        mounted = [f"assembly.{key}" for name, key in (("E", "E_mm"), ("P", "P_mm"), ("G", "G_mm"),
+                                                       ("d_sigma", "sigma_deg")) if asm.get(name, 0.0) != 0.0]
         raise DesignError(f"spiral bevel synthesis/TCA failed ({type(exc).__name__}: {str(exc)[:160]})",
-                          (f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
+                          (*mounted, f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
                            f"bevel.{side}.ellipse_major_mm", "bevel.spiral_angle_deg", "bevel.cutter_radius_mm"),
+                          ("smaller assembly errors, or " if mounted else "") +
                           "move the targets towards the shipped case's values", file=str(case_path)) from None
 
 
@@ -86,10 +90,11 @@ def _run_bevel_tca(case: dict, out: str | None) -> dict:
     gear = standard_gear_cut(bl)
     pin, infos = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
     pair = BevelPair(bl, gear, pin)
+    asm = Assembly(**case.assembly)          # [assembly] E, P, G, sigma: the TCA of the pair as mounted
     flanks, design, runs = {}, {}, {}
     for label, side in (("working", "concave"), ("coast", "convex")):
-        r = tca(pair, side, steps_per_cycle=16, max_cycles=3.0)
-        sep = separation_tca(pair, side, steps_per_cycle=16, cycles=3.0)
+        r = tca(pair, side, asm, steps_per_cycle=16, max_cycles=3.0)
+        sep = separation_tca(pair, side, asm, steps_per_cycle=16, cycles=3.0)
         runs[label] = (r, sep)
         m = cycle_metrics(r, bl)
         tg = case.targets[side]
@@ -105,7 +110,8 @@ def _run_bevel_tca(case: dict, out: str | None) -> dict:
     settings = dict(gear=_settings(gear), pinion=_settings(pin))
     undercut = {m: {s: undercut_check(c.flank(s), bl, m).message for s in ("concave", "convex")}
                 for m, c in (("gear", gear), ("pinion", pin))}
-    summary = dict(case=case.name, flanks=flanks, machine_settings=settings, design=design, undercut=undercut)
+    summary = dict(case=case.name, flanks=flanks, machine_settings=settings, design=design, undercut=undercut,
+                   assembly=dict(E_mm=asm.E, P_mm=asm.P, G_mm=asm.G, sigma_deg=float(np.rad2deg(asm.d_sigma))))
     _print_summary(case.name, settings, flanks)
     if out is not None:
         d = Path(out)

@@ -73,6 +73,7 @@ def plan(case: CylindricalCase, fidelity: str | None = None, positions: int | No
         The case file, named in messages.
     """
     from ..sizing import check_run_size
+    from .limits import check_limits
     from .sampling import default_positions, sampling_warnings
     from .warnings import check_contact, design_warnings
     t0 = time.perf_counter()
@@ -85,6 +86,7 @@ def plan(case: CylindricalCase, fidelity: str | None = None, positions: int | No
     check_contact(model, str(file or case.name))
     n_pos = positions or (default_positions(model) if case.positions_auto else case.positions)
     check_run_size(case, n_pos, FIDELITIES[fid_name], max_output_gb)
+    check_limits(model, FIDELITIES[fid_name], fid_name, str(file or case.name))   # body size, edge zones
     warnings = tuple(design_warnings(model) + sampling_warnings(model, n_pos))
     return CylindricalPlan(case, model, fid_name, n_pos, warnings, time.perf_counter() - t0)
 

@@ -79,7 +79,9 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         strips, dz, ds, lattice = contact_strips(lm, phi1, state["theta"], widen, torque, cycle)
         if not strips:
             raise ConvergenceError("contact search", float("inf"), 0,
-                                   "no tooth pair comes near contact: check the centre distance and the positions")
+                                   "no tooth pair comes near contact: check the centre distance, the positions "
+                                   "(more of them: analysis.positions) and large form deviations or misalignment "
+                                   "(profile_form_um, lead_form_um, lead_misalignment_um)")
         return strips, ds, contact_system(lm, phi1, strips, dz, ds, cycle, lattice)
 
     def solve_args(x):

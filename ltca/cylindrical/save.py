@@ -32,11 +32,11 @@ def write_outputs(run: CylindricalRun, head: dict, stage: Path, case_file: str, 
     paraview_steps : int
         Positions of the first torque in the ParaView series (0: none).
     """
-    from ..outputs import write_bytes_atomic
+    from ..outputs import write_netcdf_atomic
     from .report import plot_all, write_vtu
     from .sweep import NC_ENCODING
     lm, model, case = run.lm, run.lm.model, run.plan.case
-    write_bytes_atomic(stage / "results.nc", run.dataset.to_netcdf(engine="h5netcdf", encoding=NC_ENCODING))
+    write_netcdf_atomic(stage / "results.nc", run.dataset, NC_ENCODING)   # in memory first: HDF5 aborts on ENOSPC
     plot_all(run.dataset, stage, case.name)
     first = run.results[0]
     k = int(np.argmax(run.datasets[0].max_pressure.values))

@@ -30,62 +30,77 @@ from geometry.satellite import METHODS, DiskCutter, HobThreePass, SatelliteDesig
 from geometry.satellite.rating import RatingInputs
 from geometry.satellite.wheel import CentralWheelDesign
 
-from ..case import FIDELITIES, read_toml
+from ..case import FIDELITIES, check_torques, read_toml
 from ..errors import CaseError
+from ..validation import DesignError, Int, List, Num, Str, Table, check_table
 
-__all__ = ["PlanetaryCase", "is_planetary", "load_planetary_case", "parse_planetary_case"]
+__all__ = ["PlanetaryCase", "is_planetary", "load_planetary_case", "parse_planetary_case", "compare_case_forming",
+           "forming_error"]
 
 DEG = math.pi / 180
-_N = (int, float)
-_ANY = lambda v: True     # noqa: E731
+_POS_MM = 1e5       # an upper bound for diameters, mm (400 teeth of module 100 make 40 000 mm)
 
-# key: (types, required, default, check, words)
-_SAT = {
-    "teeth": (int, True, None, lambda v: 12 <= v <= 400, "an integer in [12, 400]"),
-    "module_mm": (_N, True, None, lambda v: 0.1 <= v <= 100, "a number in [0.1, 100] mm"),
-    "pressure_angle_deg": (_N, False, 20.0, lambda v: 10 <= v <= 35, "a number in [10, 35] deg"),
-    "profile_shift": (_N, False, 0.0, lambda v: -2 <= v <= 2, "a number in [-2, 2]"),
-    "thinning": (_N, False, 0.0, lambda v: 0 <= v < 1, "a number in [0, 1) (Eq. 3: s = ... - k m)"),
-    "face_width_mm": (_N, True, None, lambda v: 0.5 <= v <= 2000, "a number in [0.5, 2000] mm"),
-    "tip_diameter_mm": (_N, False, None, lambda v: v > 0, "a positive number, mm"),
-    "bore_diameter_mm": (_N, True, None, lambda v: v > 0, "a positive number, mm (the eccentric bearing's seat)"),
-    "method": (str, False, "special_hob", lambda v: v in METHODS, f"one of {list(METHODS)}"),
-}
+
+class _Torques:
+    """``load.torque_nm``: a number or a list of distinct numbers in [1e-3, 1e6] N m (as every case kind)."""
+    default = None
+    required = False
+
+    def words(self) -> str:
+        return "a number or a list of 1 to 100 distinct numbers in [0.001, 1e+06] N m"
+
+    def check(self, v, path: str, file):
+        return check_torques(v, path, file)
+
+
 _TOOLS = {
-    "hob_three_pass": {"shift_mm": (_N, False, None, _ANY, "a number in [0, 2] mm (None: k m / 2)"),
-                       "lead_angle_deg": (_N, False, 0.0, _ANY, "a number in [0, 11.4] deg")},
-    "disk_cutter": {"x_plunge": (_N, False, -1.3, _ANY, "a number in [-2.5, 0.5]"),
-                    "teeth": (int, False, 14, _ANY, "an integer in [1, 100] (a disk cutter with no teeth cuts nothing)"),
-                    "profile_teeth": (int, False, None, _ANY, "an integer in [12, 400]")},
-    "special_hob": {"thickening": (_N, False, None, _ANY, "a number in [0, 1)")},
+    "hob_three_pass": Table({"shift_mm": Num(0, 2, "mm", note="default k m / 2"),
+                             "lead_angle_deg": Num(0, 11.4, "deg", default=0.0)}),
+    "disk_cutter": Table({"x_plunge": Num(-2.5, 0.5, default=-1.3),
+                          "teeth": Int(1, 100, default=14, note="a disk cutter with no teeth cuts nothing"),
+                          "profile_teeth": Int(12, 400, note="default the satellite's teeth")}),
+    "special_hob": Table({"thickening": Num(0, 1, hi_open=True, note="default the satellite's thinning")}),
 }
-_CUTTER = {"addendum": (_N, False, 1.25, _ANY, "a number in (0.5, 2] x module"),
-           "dedendum": (_N, False, 1.0, _ANY, "a number in [1, 2] x module"),
-           "tip_radius": (_N, False, 0.38, _ANY, "a number in [0, 0.5] x module")}
-_WHEEL = {
-    "tooth_difference": (int, False, 1, _ANY, "an integer in [1, 8] (z2 - z1 < 1: the satellite cannot be "
-                         "assembled inside the wheel)"),
-    "eccentricity_mm": (_N, False, None, _ANY, "a positive number, mm (default one module)"),
-    "profile_shift": (_N, False, 0.0, _ANY, "a number in [-1, 1]"),
-    "shaper_teeth": (int, False, 25, _ANY, "an integer in [8, z2 - 5]"),
-    "shaper_profile_shift": (_N, False, 0.0, _ANY, "a number in [-1, 1]"),
-    "shaper_addendum": (_N, False, 1.25, _ANY, "a number in (0.5, 2] x module"),
-    "shaper_tip_radius": (_N, False, 0.25, _ANY, "a number in [0, 0.5] x module"),
-    "far_tip_clearance_mm": (_N, False, 0.5, _ANY, "a number in [0, 5] mm"),
-    "tip_diameter_mm": (_N, False, None, _ANY, "a positive number, mm"),
-    "outer_diameter_mm": (_N, True, None, lambda v: v > 0, "a positive number, mm (held in the housing)"),
-}
-_MATERIAL = {"name": (str, False, "steel", None, "a string"),
-             "youngs_modulus_mpa": (_N, False, 206000.0, lambda v: 1e3 <= v <= 1e6, "a number in [1e3, 1e6] MPa"),
-             "poisson_ratio": (_N, False, 0.3, lambda v: 0 <= v < 0.5, "a number in [0, 0.5)"),
-             "sigma_flim_mpa": (_N, False, RatingInputs().sigma_Flim, lambda v: 0 < v <= 2000,
-                                "a number in (0, 2000] MPa")}
-_LOAD = {"torques_percent_of_rated": (list, False, None, None, "a list of numbers in (0, 500] %"),
-         "torque_nm": ((list, int, float), False, None, None, "a number or a list of numbers in (0, 1e6] N m")}
-_ANALYSIS = {"positions": (int, False, 6, lambda v: 1 <= v <= 500, "an integer in [1, 500] (per mesh cycle)"),
-             "fidelity": (str, False, "coarse", lambda v: v in FIDELITIES, f"one of {sorted(FIDELITIES)}"),
-             "far_teeth": (str, False, "none", lambda v: v in ("none", "full"), "'none' or 'full'")}
-_TOP = {"case", "satellite", "cutter", "wheel", "material", "load", "analysis"}
+_SAT = Table({
+    "teeth": Int(12, 400, required=True),
+    "module_mm": Num(0.1, 100, "mm", required=True),
+    "pressure_angle_deg": Num(10, 35, "deg", default=20.0),
+    "profile_shift": Num(-2, 2, default=0.0),
+    "thinning": Num(0, 1, hi_open=True, default=0.0, note="Eq. 3: s = ... - k m"),
+    "face_width_mm": Num(0.5, 2000, "mm", required=True),
+    "tip_diameter_mm": Num(0, _POS_MM, "mm", lo_open=True),
+    "bore_diameter_mm": Num(0, _POS_MM, "mm", lo_open=True, required=True, note="the eccentric bearing's seat"),
+    "method": Str(choices=tuple(METHODS), default="special_hob"),
+    **_TOOLS}, required=True)
+_CUTTER = Table({"addendum": Num(0.5, 2, "x module", lo_open=True, default=1.25),
+                 "dedendum": Num(1, 2, "x module", default=1.0),
+                 "tip_radius": Num(0, 0.5, "x module", default=0.38)})
+_WHEEL = Table({
+    "tooth_difference": Int(1, 8, default=1, note="z2 - z1 < 1: the satellite cannot be assembled inside the wheel"),
+    "eccentricity_mm": Num(0, 1000, "mm", lo_open=True, note="default one module"),
+    "profile_shift": Num(-1, 1, default=0.0),
+    "shaper_teeth": Int(8, 395, default=25, note="at most z2 - 5"),
+    "shaper_profile_shift": Num(-1, 1, default=0.0),
+    "shaper_addendum": Num(0.5, 2, "x module", lo_open=True, default=1.25),
+    "shaper_tip_radius": Num(0, 0.5, "x module", default=0.25),
+    "far_tip_clearance_mm": Num(0, 5, "mm", default=0.5),
+    "tip_diameter_mm": Num(0, _POS_MM, "mm", lo_open=True),
+    "outer_diameter_mm": Num(0, _POS_MM, "mm", lo_open=True, required=True, note="held in the housing"),
+}, required=True)
+_MATERIAL = Table({"name": Str(max_len=200, default="steel"),
+                   "youngs_modulus_mpa": Num(1e3, 1e6, "MPa", default=206000.0),
+                   "poisson_ratio": Num(0, 0.5, hi_open=True, default=0.3),
+                   "sigma_flim_mpa": Num(0, 2000, "MPa", lo_open=True, default=RatingInputs().sigma_Flim)})
+_LOAD = Table({"torques_percent_of_rated": List(Num(0, 500, "%", lo_open=True), 1, 100),
+               "torque_nm": _Torques()}, required=True)
+_ANALYSIS = Table({"positions": Int(1, 500, default=6, note="per mesh cycle"),
+                   "fidelity": Str(choices=tuple(sorted(FIDELITIES)), default="coarse"),
+                   "far_teeth": Str(choices=("none", "full"), default="none")})
+_CASE = Table({"name": Str(non_empty=True, max_len=200, default="planetary"),
+               "description": Str(max_len=2000, default=""),
+               "source": Str(max_len=2000, default=None)})
+_SCHEMA = Table({"case": _CASE, "satellite": _SAT, "cutter": _CUTTER, "wheel": _WHEEL, "material": _MATERIAL,
+                 "load": _LOAD, "analysis": _ANALYSIS})
 
 
 @dataclass(frozen=True)
@@ -121,31 +136,6 @@ def is_planetary(data: dict) -> bool:
     return "satellite" in data
 
 
-def _table(data: dict, name: str, spec: dict, file, required: bool = True, nested: tuple = ()) -> dict:
-    raw = data.get(name.split(".")[-1], None) if "." not in name else data
-    if raw is None:
-        if required:
-            raise CaseError(name, None, "required table", file)
-        raw = {}
-    if not isinstance(raw, dict):
-        raise CaseError(name, raw, "a table", file)
-    for k in raw:
-        if k not in spec and k not in nested:
-            raise CaseError(f"{name}.{k}", raw[k], f"unknown key; allowed: {sorted(spec) + list(nested)}", file)
-    out = {}
-    for k, (typ, req, default, ok, words) in spec.items():
-        if k not in raw:
-            if req:
-                raise CaseError(f"{name}.{k}", None, f"required; {words}", file)
-            out[k] = default
-            continue
-        v = raw[k]
-        if isinstance(v, bool) or not isinstance(v, typ) or (ok is not None and not ok(v)):
-            raise CaseError(f"{name}.{k}", v, words, file)
-        out[k] = float(v) if typ is _N else v
-    return out
-
-
 def _make(cls, field: str, file, kwargs: dict, names: dict):
     """Construct a geometry record; its ValueError ('Cls.attr = ...') becomes a CaseError on the case field."""
     try:
@@ -158,20 +148,14 @@ def _make(cls, field: str, file, kwargs: dict, names: dict):
         raise CaseError(f"{field}.{key}" if key else field, val, msg.split(": ", 1)[-1], file) from None
 
 
-def _torques(raw: list, field: str, lo: float, hi: float, file) -> tuple[float, ...]:
-    if not raw or any(isinstance(v, bool) or not isinstance(v, _N) or not lo < v <= hi for v in raw):
-        raise CaseError(field, raw, f"a non-empty list of numbers in ({lo:g}, {hi:g}]", file)
-    return tuple(float(v) for v in raw)
-
-
 def parse_planetary_case(data: dict, file: str | None = None) -> PlanetaryCase:
     """Validate a planetary case dictionary (from TOML) and convert its units."""
-    for k in data:
-        if k not in _TOP:
-            raise CaseError(k, data[k], f"unknown table; allowed: {sorted(_TOP)}", file)
-    meta = data.get("case", {})
-    sat = _table(data, "satellite", _SAT, file, nested=tuple(_TOOLS))
-    cut = _table(data, "cutter", _CUTTER, file, required=False)
+    if isinstance(data.get("load"), dict) and "torques_nm" in data["load"]:
+        raise CaseError("load.torques_nm", data["load"]["torques_nm"], "renamed: write torque_nm = a number or a "
+                        "list of numbers (N m)", file)
+    c = check_table(data, _SCHEMA, "", file)
+    meta, sat, cut, w, mat, load, an = (c[k] for k in ("case", "satellite", "cutter", "wheel", "material", "load",
+                                                       "analysis"))
     m = sat["module_mm"]
     design = _make(SatelliteDesign, "satellite", file, dict(
         z=sat["teeth"], m=m, alpha=sat["pressure_angle_deg"] * DEG, x=sat["profile_shift"], thinning=sat["thinning"],
@@ -180,23 +164,20 @@ def parse_planetary_case(data: dict, file: str | None = None) -> PlanetaryCase:
         dict(z="teeth", m="module_mm", alpha="pressure_angle_deg", x="profile_shift", d_tip="tip_diameter_mm",
              rack_addendum_coef="../cutter.addendum", rack_dedendum_coef="../cutter.dedendum",
              rack_tip_radius_coef="../cutter.tip_radius"))
-    tools = {}
-    raw_sat = data["satellite"]
-    for name, spec in _TOOLS.items():
-        t = _table(raw_sat.get(name, {}), f"satellite.{name}", spec, file, required=False)
-        if name == "hob_three_pass":
-            tools[name] = _make(HobThreePass, f"satellite.{name}", file,
-                                dict(shift=t["shift_mm"], lead_angle=t["lead_angle_deg"] * DEG),
-                                dict(shift="shift_mm", lead_angle="lead_angle_deg"))
-        elif name == "disk_cutter":
-            tools[name] = _make(DiskCutter, f"satellite.{name}", file,
-                                dict(x_plunge=t["x_plunge"], n_teeth=t["teeth"], z_profile=t["profile_teeth"]),
-                                dict(n_teeth="teeth", z_profile="profile_teeth"))
-        else:
-            tools[name] = _make(SpecialHob, f"satellite.{name}", file, dict(thickening=t["thickening"]), {})
-    w = _table(data, "wheel", _WHEEL, file)
-    if w["tooth_difference"] < 1:
-        raise CaseError("wheel.tooth_difference", w["tooth_difference"], _WHEEL["tooth_difference"][4], file)
+    t = sat["hob_three_pass"]
+    tools = {"hob_three_pass": _make(HobThreePass, "satellite.hob_three_pass", file,
+                                     dict(shift=t["shift_mm"], lead_angle=t["lead_angle_deg"] * DEG),
+                                     dict(shift="shift_mm", lead_angle="lead_angle_deg"))}
+    t = sat["disk_cutter"]
+    tools["disk_cutter"] = _make(DiskCutter, "satellite.disk_cutter", file,
+                                 dict(x_plunge=t["x_plunge"], n_teeth=t["teeth"], z_profile=t["profile_teeth"]),
+                                 dict(n_teeth="teeth", z_profile="profile_teeth"))
+    tools["special_hob"] = _make(SpecialHob, "satellite.special_hob", file,
+                                 dict(thickening=sat["special_hob"]["thickening"]), {})
+    z2 = sat["teeth"] + w["tooth_difference"]
+    if w["shaper_teeth"] > z2 - 5:
+        raise CaseError("wheel.shaper_teeth", w["shaper_teeth"], f"an integer in [8, {z2 - 5}] (z2 - 5, z2 = "
+                        f"satellite.teeth + wheel.tooth_difference = {z2})", file)
     wheel = _make(CentralWheelDesign, "wheel", file, dict(
         tooth_difference=w["tooth_difference"], eccentricity=w["eccentricity_mm"], x2=w["profile_shift"],
         shaper_teeth=w["shaper_teeth"], shaper_shift=w["shaper_profile_shift"],
@@ -205,30 +186,68 @@ def parse_planetary_case(data: dict, file: str | None = None) -> PlanetaryCase:
         dict(eccentricity="eccentricity_mm", x2="profile_shift", shaper_shift="shaper_profile_shift",
              shaper_addendum_coef="shaper_addendum", shaper_tip_radius_coef="shaper_tip_radius",
              far_tip_clearance="far_tip_clearance_mm", d_tip="tip_diameter_mm"))
-    mat = _table(data, "material", _MATERIAL, file, required=False)
-    if isinstance(data.get("load"), dict) and "torques_nm" in data["load"]:
-        raise CaseError("load.torques_nm", data["load"]["torques_nm"], "renamed: write torque_nm = a number or a "
-                        "list of numbers (N m)", file)
-    load = _table(data, "load", _LOAD, file)
     if (load["torque_nm"] is None) == (load["torques_percent_of_rated"] is None):
         raise CaseError("load", data.get("load"), "exactly one of torque_nm or torques_percent_of_rated", file)
     torques, fractions = (), ()
     if load["torque_nm"] is not None:
-        t = load["torque_nm"]
-        torques = tuple(1e3 * t for t in _torques(t if isinstance(t, list) else [t], "load.torque_nm", 0, 1e6, file))
+        torques = tuple(1e3 * t for t in load["torque_nm"])
     else:
-        fractions = tuple(0.01 * t for t in _torques(load["torques_percent_of_rated"],
-                                                      "load.torques_percent_of_rated", 0, 500, file))
-    an = _table(data, "analysis", _ANALYSIS, file, required=False)
+        fractions = tuple(0.01 * t for t in load["torques_percent_of_rated"])
     rating = RatingInputs(sigma_Flim=mat["sigma_flim_mpa"], b=sat["face_width_mm"])
     return PlanetaryCase(
-        name=str(meta.get("name", "planetary")), design=design, method=sat["method"], tools=tools, wheel=wheel,
+        name=meta["name"], design=design, method=sat["method"], tools=tools, wheel=wheel,
         face_width=sat["face_width_mm"], bore_diameter=sat["bore_diameter_mm"],
         wheel_outer_diameter=w["outer_diameter_mm"], material=mat["name"], young=mat["youngs_modulus_mpa"],
         poisson=mat["poisson_ratio"], rating=rating, torques=torques, torque_fractions=fractions,
-        positions=an["positions"], fidelity=an["fidelity"], far_teeth=an["far_teeth"], source=meta.get("source"))
+        positions=an["positions"], fidelity=an["fidelity"], far_teeth=an["far_teeth"], source=meta["source"])
 
 
 def load_planetary_case(path: str | Path) -> PlanetaryCase:
     """Read and validate a planetary case file."""
     return parse_planetary_case(read_toml(path), str(path))
+
+
+#: the case fields of each forming tool, besides the satellite's own shift and thinning
+_TOOL_FIELDS = {"hob_three_pass": ("satellite.hob_three_pass.shift_mm",),
+                "disk_cutter": ("satellite.disk_cutter.x_plunge", "satellite.disk_cutter.profile_teeth"),
+                "special_hob": ("satellite.special_hob.thickening",), "hob": ()}
+
+
+def forming_error(method: str, exc: BaseException, file: str | None = None) -> DesignError:
+    """A forming tool that cannot cut this satellite, as one line naming the fields that drive it."""
+    text = " ".join(str(exc).split())[:240] or type(exc).__name__
+    return DesignError(f"the satellite cannot be cut by {method} ({text})",
+                       (*_TOOL_FIELDS.get(method, ()), "satellite.profile_shift", "satellite.thinning"),
+                       "move the profile shift or the thinning towards the shipped case (x = -0.5, k = 0.6), or "
+                       f"adjust the {method} tool", file)
+
+
+def compare_case_forming(case: PlanetaryCase, file: str | None = None):
+    """:func:`geometry.satellite.compare.compare_forming` with the case's tools; a tool that cannot cut this satellite
+    (a vanishing tip, an empty profile, no disk-cutter plunge giving the Eq. 3 thickness) is a
+    :class:`~ltca.validation.DesignError` naming the method and its fields (exit status 2), not a traceback."""
+    from geometry.satellite.compare import compare_forming, plunge_for_thickness
+    from geometry.satellite.forming import form_disk_cutter, form_hob_three_pass, form_special_hob
+    hob, disk, special = (case.tools[k] for k in ("hob_three_pass", "disk_cutter", "special_hob"))
+    try:
+        return compare_forming(case.design, hob, disk, special)
+    except (ValueError, IndexError, ArithmeticError) as exc:
+        first = exc
+    # which step failed: each method alone (only on this path; the comparison above does them all at once)
+    steps = (("hob_three_pass", lambda: form_hob_three_pass(case.design, hob)),
+             ("disk_cutter", lambda: form_disk_cutter(case.design, disk)),
+             ("special_hob", lambda: form_special_hob(case.design, special)))
+    for method, step in steps:
+        try:
+            step()
+        except (ValueError, IndexError, ArithmeticError) as exc:
+            raise forming_error(method, exc, file) from None
+    try:
+        plunge_for_thickness(case.design, tool=disk)
+    except (ValueError, IndexError, ArithmeticError):
+        raise DesignError("no disk-cutter plunge x in [-2, 0] cuts the Eq. 3 tooth thickness "
+                          f"({case.design.eq3_thickness:.4f} mm) of this satellite",
+                          ("satellite.profile_shift", "satellite.thinning", "satellite.disk_cutter.profile_teeth"),
+                          "move the profile shift or the thinning towards the shipped case (x = -0.5, k = 0.6)",
+                          file) from None
+    raise forming_error("the three methods", first, file) from None

@@ -73,11 +73,12 @@ def build_satellite_model(case) -> SatelliteModel:
     """Form the satellite, cut the wheel and place both (module doc). ``case``: :class:`PlanetaryCase`."""
     try:
         formed = form_satellite(case.design, case.method, case.tool)
-    except ValueError as exc:
-        raise CaseError(f"satellite.{case.method}", case.tool, f"a tool that can cut the satellite: {exc}") from None
+    except (ValueError, IndexError, ArithmeticError) as exc:
+        from .case import forming_error
+        raise forming_error(case.method, exc) from None
     try:
         wheel, choice = generate_central_wheel(case.design, case.wheel)
-    except ValueError as exc:
+    except (ValueError, IndexError, ArithmeticError) as exc:
         raise CaseError("wheel", case.wheel, f"a central wheel that can be cut and assembled: {exc}") from None
     sat = formed.profile
     if wheel.r_root + 0.5 * case.design.m >= 0.5 * case.wheel_outer_diameter:

@@ -22,11 +22,11 @@ import uuid
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..errors import ConvergenceError
+from ..errors import CaseError, ConvergenceError
 from ..outputs import write_json
 from .spec import Study, Variant
 from .store import StudyStore
-from .tasks import compute_compliance, plan_variant, solve_point
+from .tasks import compute_compliance, plan_variant, solve_point, unwrap
 
 __all__ = ["run_study", "local_cluster_size", "cluster_client"]
 
@@ -39,13 +39,36 @@ def local_cluster_size() -> int:
         return max(1, os.cpu_count() or 1)
 
 
+def check_scheduler_address(address: str) -> str:
+    """``--scheduler``: a Dask scheduler address such as ``tcp://127.0.0.1:8786`` (parsed by Dask itself);
+    :class:`~ltca.errors.CaseError` (exit status 2) otherwise."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+    allowed = "the address of a running Dask scheduler, e.g. tcp://127.0.0.1:8786"
+    if not isinstance(address, str) or not 0 < len(address) <= 500 or any(c.isspace() for c in address):
+        raise CaseError("--scheduler", address, allowed)
+    try:
+        scheme, loc = parse_address(address)
+        if scheme in ("tcp", "tls", "ws", "wss", "ucx"):
+            host, port = parse_host_port(loc)
+            if not host or port is None or not 0 < int(port) < 65536:
+                raise ValueError(f"no host or port in {loc!r}")
+    except (ValueError, TypeError) as exc:
+        raise CaseError("--scheduler", address, f"{allowed} ({exc})") from None
+    return address
+
+
 @contextmanager
 def cluster_client(scheduler: str | None = None, workers: int | None = None):
     """A ``distributed.Client``: of the cluster at ``scheduler``, or of a new LocalCluster of ``workers``
     single-threaded worker processes (default :func:`local_cluster_size`), closed on exit."""
     from distributed import Client, LocalCluster
     if scheduler:
-        client = Client(scheduler, timeout="30s")
+        check_scheduler_address(scheduler)
+        try:
+            client = Client(scheduler, timeout="30s")
+        except (OSError, TimeoutError) as exc:
+            raise CaseError("--scheduler", scheduler, "the address of a running Dask scheduler (none answered "
+                            f"within 30 s: {' '.join(str(exc).split())[:200]})") from None
         try:
             yield client
         finally:
@@ -54,7 +77,8 @@ def cluster_client(scheduler: str | None = None, workers: int | None = None):
     n = workers or local_cluster_size()
     # one task at a time per worker; BLAS / PARDISO threads as in ``ltca run`` (the contact solve limits its
     # BLAS to one thread itself), so that a lone compliance task still uses every core
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+    # the dashboard on a free port (":0"): the default port taken by another cluster is a warning on the console
+    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
             Client(cluster) as client:
         yield client
 
@@ -99,7 +123,7 @@ def _execute(client, study: Study, store: StudyStore, todo: dict, prog: _Progres
     for f in ac:
         kind, obj, extra = meta.pop(f.key)
         if kind == "plan":
-            vplan = f.result()
+            vplan = unwrap(f.result())
             cf = compliance.get(vplan.key)
             if cf is None:
                 kept = store.load_compliance(vplan.key)
@@ -119,14 +143,14 @@ def _execute(client, study: Study, store: StudyStore, todo: dict, prog: _Progres
                 meta[pf.key] = ("point", obj, t)
                 ac.add(pf)
         elif kind == "compliance":
-            comp = f.result()
+            comp = unwrap(f.result())
             store.save_compliance(obj, comp)
             stats["compliance_computed"] += 1
             stats["compliance_seconds"].append(round(comp.seconds, 3))
             prog.say(f"geometry {obj}: compliance computed in {comp.seconds:.1f} s (worker pid {comp.pid})")
         else:
             try:
-                ds, head = f.result()
+                ds, head = unwrap(f.result())
             except ConvergenceError as exc:
                 stats["failed"].append({"variant": obj.id, "torque_nm": extra, "error": str(exc)})
                 prog.say(f"variant {obj.id} at {extra:g} N m: {exc}")

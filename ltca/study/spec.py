@@ -142,8 +142,16 @@ class Study:
                             "numbers (N m), the spelling of the case files", file)
         d = check_table(data, CASE, "", file)
         st = d["study"]
+        if "\0" in st["case"]:
+            raise CaseError("study.case", st["case"], "the base case file (.toml), relative to the study: a path "
+                            "of 1 to 1000 characters without NUL", file)
         case_path = Path(base_dir) / st["case"]
-        if not case_path.is_file():
+        try:
+            found = case_path.is_file()
+        except OSError as exc:            # a path the file system refuses (a name too long)
+            raise CaseError("study.case", st["case"], f"a case file path the file system accepts ({exc.strerror})",
+                            file) from None
+        if not found:
             raise CaseError("study.case", st["case"], f"an existing case file (looked for {case_path})", file)
         base = read_toml(case_path)
         for key, value in d["set"].items():
@@ -168,9 +176,10 @@ class Study:
         raw_variants = data.get("variants", [])
         names = set()
         for i, v in enumerate(raw_variants):
-            name = v.get("name", f"variant{i}")
-            if name in names:
-                raise CaseError(f"variants[{i}].name", name, "a string naming the variant, unique", file)
+            name = v.get("name")
+            if not isinstance(name, str) or name in names or not 0 < len(name.strip()) <= 200:
+                raise CaseError(f"variants[{i}].name", name, "required: a non-empty string of at most 200 characters "
+                                "naming the variant, unique", file)
             names.add(name)
             for key in v:
                 if key != "name":

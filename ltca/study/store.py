@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from ..outputs import write_netcdf_atomic
 from .spec import Study, Variant
 
 __all__ = ["StudyStore", "load_study", "SCALARS"]
@@ -65,11 +66,9 @@ class StudyStore:
         """Write one point atomically (temporary name in the same directory, then rename)."""
         self.points.mkdir(parents=True, exist_ok=True)
         path = self.point_path(vid, torque_nm)
-        tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
         ds = ds.copy()
         ds.attrs.update(variant_id=vid, summary=json.dumps(head))
-        ds.to_netcdf(tmp, engine="h5netcdf")
-        os.replace(tmp, path)
+        write_netcdf_atomic(path, ds)
         return path
 
     def compliance_path(self, key: str) -> Path:
@@ -135,9 +134,7 @@ class StudyStore:
             ds.attrs.update(monte_carlo=json.dumps({"grade": mc.grade, "samples": mc.samples, "seed": mc.seed,
                                                     "members": list(mc.members)}))
         path = self.root / "study.nc"
-        tmp = path.with_name(f".study.nc.tmp{os.getpid()}")
-        ds.to_netcdf(tmp, engine="h5netcdf")
-        os.replace(tmp, path)
+        write_netcdf_atomic(path, ds)
         return ds
 
 

@@ -18,6 +18,7 @@ Imports ltca.case, ltca.cylindrical and fem.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import os
 import time
@@ -32,8 +33,70 @@ from ..cylindrical.loaded_model import BodyPlan, Fidelity, plan_bodies, prepare
 from ..cylindrical.model import PairModel, build_model
 from ..cylindrical.results import position_dataset, summary
 from ..cylindrical.run import analyse, cycle_rolls
+from ..errors import CaseError, ConvergenceError
 
-__all__ = ["VariantPlan", "Compliance", "geometry_key", "plan_variant", "compute_compliance", "solve_point"]
+__all__ = ["VariantPlan", "Compliance", "geometry_key", "plan_variant", "compute_compliance", "solve_point",
+           "TaskFailure", "unwrap"]
+
+
+@dataclass(frozen=True)
+class TaskFailure:
+    """A task's user-level failure (a variant the geometry cannot make: exit status 2; a solve that did not
+    converge: 3), returned instead of raised: a raised exception makes each Dask worker log a traceback on the
+    console, for a mistake that deserves one line. :func:`unwrap` raises it again on the client."""
+    status: int
+    message: str
+    residual: float = float("nan")
+    iterations: int = 0
+
+
+class VariantError(CaseError):
+    """A variant's CaseError (or another exit-2 failure) from a worker, carried back as its one-line message."""
+
+    def __init__(self, message: str):
+        CaseError.__init__(self, "variant", None, message)
+        self.args = (message,)
+
+    def __str__(self) -> str:
+        return self.args[0]
+
+
+class VariantNotConverged(ConvergenceError):
+    """A variant's ConvergenceError from a worker, carried back as its message and residual."""
+
+    def __init__(self, message: str, residual: float, iterations: int):
+        RuntimeError.__init__(self, message)
+        self.residual, self.iterations = residual, iterations
+
+
+def unwrap(result):
+    """A task's result; a :class:`TaskFailure` raised again as VariantError / VariantNotConverged."""
+    if isinstance(result, TaskFailure):
+        if result.status == 3:
+            raise VariantNotConverged(result.message, result.residual, result.iterations)
+        raise VariantError(result.message)
+    return result
+
+
+def _user_errors(fn):
+    """Run ``fn``; a failure the command line reports in one line (exit 2 or 3, :func:`ltca.exit_codes.classify`)
+    is returned as a :class:`TaskFailure`; a bug is raised as it is (its traceback is wanted)."""
+    @functools.wraps(fn)
+    def task(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except Exception as exc:      # sorted by the command line's own rule (ltca.exit_codes)
+            from ..exit_codes import classify
+            if isinstance(exc, CaseError):
+                return TaskFailure(2, str(exc))
+            if isinstance(exc, ConvergenceError):
+                return TaskFailure(3, str(exc), float(exc.residual), int(exc.iterations))
+            status, message = classify(exc)
+            if status == 1:
+                raise
+            return TaskFailure(status, message, float(getattr(exc, "residual", float("nan"))),
+                               int(getattr(exc, "iterations", 0)))
+    return task
 
 
 @dataclass(frozen=True)
@@ -87,6 +150,7 @@ def _plain(v):
     return v
 
 
+@_user_errors
 def plan_variant(case_dict: dict) -> VariantPlan:
     """Plan one variant (cheap: an unloaded TCA); see the module docstring.
 
@@ -101,6 +165,7 @@ def plan_variant(case_dict: dict) -> VariantPlan:
     return VariantPlan(geometry_key(model, plan), plan, time.perf_counter() - t0)
 
 
+@_user_errors
 def compute_compliance(case_dict: dict, vplan: VariantPlan) -> Compliance:
     """Both bodies' compliance of the variant's geometry (the costly step, once per geometry key).
 
@@ -119,6 +184,7 @@ def compute_compliance(case_dict: dict, vplan: VariantPlan) -> Compliance:
     return Compliance(vplan.key, bodies[0], bodies[1], time.perf_counter() - t0, os.getpid())
 
 
+@_user_errors
 def solve_point(case_dict: dict, vplan: VariantPlan, compliance: Compliance, torque_nm: float):
     """The loaded contact of one variant over its positions at one torque, with a compliance computed before.
 
