@@ -34,12 +34,9 @@ HEADER = ("# Case keys\n\n"
 
 
 def _planetary() -> Table | None:
-    """The planetary kind's Table when its module declares one (``_CASE`` or ``schema()``), else None."""
-    from .planetary import case as mod
-    spec = getattr(mod, "_CASE", None)
-    if spec is None and callable(getattr(mod, "schema", None)):
-        spec = mod.schema()
-    return spec if isinstance(spec, Table) else None
+    """The planetary kind's Table (``CASE`` of :mod:`ltca.planetary.case`, as every kind names it)."""
+    from .planetary.case import CASE
+    return CASE
 
 
 def kind_schema(kind: str) -> Table | None:

@@ -30,27 +30,15 @@ from geometry.satellite import METHODS, DiskCutter, HobThreePass, SatelliteDesig
 from geometry.satellite.rating import RatingInputs
 from geometry.satellite.wheel import CentralWheelDesign
 
-from ..case import FIDELITIES, check_torques, read_toml
+from ..case import FIDELITIES, TORQUE, read_toml
 from ..errors import CaseError
-from ..validation import DesignError, Int, List, Num, Str, Table, check_table
+from ..validation import DesignError, Int, List, Num, OneOrList, Str, Table, check_table
 
 __all__ = ["PlanetaryCase", "is_planetary", "load_planetary_case", "parse_planetary_case", "compare_case_forming",
            "forming_error"]
 
 DEG = math.pi / 180
 _POS_MM = 1e5       # an upper bound for diameters, mm (400 teeth of module 100 make 40 000 mm)
-
-
-class _Torques:
-    """``load.torque_nm``: a number or a list of distinct numbers in [1e-3, 1e6] N m (as every case kind)."""
-    default = None
-    required = False
-
-    def words(self) -> str:
-        return "a number or a list of 1 to 100 distinct numbers in [0.001, 1e+06] N m"
-
-    def check(self, v, path: str, file):
-        return check_torques(v, path, file)
 
 
 _TOOLS = {
@@ -92,15 +80,17 @@ _MATERIAL = Table({"name": Str(max_len=200, default="steel"),
                    "poisson_ratio": Num(0, 0.5, hi_open=True, default=0.3),
                    "sigma_flim_mpa": Num(0, 2000, "MPa", lo_open=True, default=RatingInputs().sigma_Flim)})
 _LOAD = Table({"torques_percent_of_rated": List(Num(0, 500, "%", lo_open=True), 1, 100),
-               "torque_nm": _Torques()}, required=True)
+               "torque_nm": OneOrList(TORQUE, 1, 100, distinct=True,
+                                     meaning="satellite torque, or a list of torques analysed one after the other")},
+              required=True)
 _ANALYSIS = Table({"positions": Int(1, 500, default=6, note="per mesh cycle"),
                    "fidelity": Str(choices=tuple(sorted(FIDELITIES)), default="coarse"),
                    "far_teeth": Str(choices=("none", "full"), default="none")})
 _CASE = Table({"name": Str(non_empty=True, max_len=200, default="planetary"),
                "description": Str(max_len=2000, default=""),
                "source": Str(max_len=2000, default=None)})
-_SCHEMA = Table({"case": _CASE, "satellite": _SAT, "cutter": _CUTTER, "wheel": _WHEEL, "material": _MATERIAL,
-                 "load": _LOAD, "analysis": _ANALYSIS})
+CASE = Table({"case": _CASE, "satellite": _SAT, "cutter": _CUTTER, "wheel": _WHEEL, "material": _MATERIAL,
+              "load": _LOAD, "analysis": _ANALYSIS})
 
 
 @dataclass(frozen=True)
@@ -153,7 +143,7 @@ def parse_planetary_case(data: dict, file: str | None = None) -> PlanetaryCase:
     if isinstance(data.get("load"), dict) and "torques_nm" in data["load"]:
         raise CaseError("load.torques_nm", data["load"]["torques_nm"], "renamed: write torque_nm = a number or a "
                         "list of numbers (N m)", file)
-    c = check_table(data, _SCHEMA, "", file)
+    c = check_table(data, CASE, "", file)
     meta, sat, cut, w, mat, load, an = (c[k] for k in ("case", "satellite", "cutter", "wheel", "material", "load",
                                                        "analysis"))
     m = sat["module_mm"]
