@@ -1,4 +1,4 @@
-"""Head cutter of face milling: straight-profile blades with a circular edge radius.
+"""Head cutter of face milling: straight or curved (circular-arc) blades with a circular edge radius.
 
 Cutter frame S_c: z along the cutter axis, origin at the cutter centre in the **tip plane** (the plane of
 the blade tips, z = 0); the blades occupy z <= 0 (head body further down).  A blade point at depth
@@ -20,6 +20,18 @@ Profile parameter ``u`` (mm, arc length, unit speed, C1): u < 0 on the edge radi
 (u = -r_f (phi - alpha)), u >= 0 on the straight part (s = s0 + u with s0 the depth of the tangency
 point).  A surface point is (rho(u) cos(theta), rho(u) sin(theta), z(u)).  Litvin & Fuentes, *Gear Geometry
 and Applied Theory*, 2nd ed. (2004), sec. 20.3 (blade cone surfaces), with our own parametrisation.
+
+**Curved blade** (profile radius rho_b, the circular-arc blade of profile crowning; Litvin & Fuentes 2004,
+sec. 20.3, blade surface of a torus): the profile is the circle through (R_p, 0) tangent there to the straight
+profile, its centre a distance rho_b on the work side.  With s the arc length from (R_p, 0) and
+phi = alpha + s / rho_b,
+
+    rho(s) = R_p + sigma rho_b (cos(alpha) - cos(phi)),   z(s) = rho_b (sin(alpha) - sin(phi)),
+
+normal n = -sigma cos(phi) e_rho - sin(phi) e_z as above.  The edge radius touches it (externally) and the tip
+plane at phi_t with sin(phi_t) = (rho_b sin(alpha) + r_f) / (rho_b + r_f) (the two circles' centres lie
+rho_b + r_f apart, the edge centre at z = -r_f); u = s - rho_b (phi_t - alpha) on the blade, u < 0 on the edge.
+rho_b -> inf is the straight blade.
 """
 from __future__ import annotations
 
@@ -63,7 +75,10 @@ class HeadCutter:
     part : str
         ``"whole"`` (the blade), or ``"straight"``: its straight profile continued past the tangency with the
         edge radius, for every u (the whole blade is that line for u >= 0). The straight part generates a smooth
-        branch of the flank, which :class:`geometry.bevel.surface_table.SurfaceTable` tabulates.
+        branch of the flank, which :class:`geometry.bevel.surface_table.SurfaceTable` tabulates. For a curved
+        blade ``"straight"`` is its circular arc continued likewise.
+    profile_radius : float
+        rho_b, mm, > 0: radius of a curved blade (centre on the work side); ``inf`` (default) a straight blade.
     """
 
     point_radius: float
@@ -71,8 +86,11 @@ class HeadCutter:
     blade: str = "outside"
     edge_radius: float = 0.0
     part: str = "whole"
+    profile_radius: float = float("inf")
 
     def __post_init__(self) -> None:
+        if not (self.profile_radius > 0 and not np.isnan(self.profile_radius)):
+            raise ValueError(f"profile_radius = {self.profile_radius!r} is outside the allowed range (0, inf] mm")
         if self.blade not in ("outside", "inside"):
             raise ValueError(f"blade = {self.blade!r}: allowed 'outside' or 'inside'")
         if not (np.isfinite(self.point_radius) and self.point_radius > 0):
@@ -96,20 +114,38 @@ class HeadCutter:
         return "concave" if self.blade == "outside" else "convex"
 
     @property
-    def s0(self) -> float:
-        """Depth along the straight profile of the edge-radius tangency point, mm."""
+    def curved(self) -> bool:
+        """True for a curved (circular-arc) blade."""
+        return bool(np.isfinite(self.profile_radius))
+
+    @property
+    def phi_t(self) -> float:
+        """Normal angle of the edge-radius tangency point, rad (alpha for a straight blade)."""
         a = self.blade_angle
+        if not self.curved:
+            return a
+        rb, rf = self.profile_radius, self.edge_radius
+        return float(np.arcsin((rb * np.sin(a) + rf) / (rb + rf)))
+
+    @property
+    def s0(self) -> float:
+        """Arc length along the blade profile from (R_p, 0) to the edge-radius tangency point, mm."""
+        a = self.blade_angle
+        if self.curved:
+            return self.profile_radius * (self.phi_t - a)
         return self.edge_radius * (1.0 - np.sin(a)) / np.cos(a)
 
     @property
     def u_min(self) -> float:
         """Smallest profile parameter (the edge radius meets the tip plane), mm."""
-        return -self.edge_radius * (0.5 * np.pi - self.blade_angle)
+        return -self.edge_radius * (0.5 * np.pi - self.phi_t)
 
     def profile(self, u: np.ndarray) -> CutterProfile:
         """Blade axial profile at parameters ``u`` (mm), shape preserved; u below ``u_min`` continues
         the tip plane, so Newton iterates stay defined."""
         u = np.asarray(u, dtype=float)
+        if self.curved:
+            return self._curved_profile(u)
         a, sg, rf = self.blade_angle, self.sigma, self.edge_radius
         sa, ca = np.sin(a), np.cos(a)
         # straight part
@@ -135,6 +171,31 @@ class HeadCutter:
                              np.where(on_arc, n_rho_a, -sg * ca), np.where(on_arc, n_z_a, -sa),
                              np.where(on_arc, d_rho_a, sg * sa), np.where(on_arc, d_z_a, -ca))
 
+    def _curved_profile(self, u: np.ndarray) -> CutterProfile:
+        """:meth:`profile` of a curved blade (module docstring)."""
+        a, sg, rf, rb = self.blade_angle, self.sigma, self.edge_radius, self.profile_radius
+        pt = self.phi_t
+        ph = a + (self.s0 + u) / rb
+        rho_s = self.point_radius + sg * rb * (np.cos(a) - np.cos(ph))
+        z_s = rb * (np.sin(a) - np.sin(ph))
+        blade = CutterProfile(rho_s, z_s, -sg * np.cos(ph), -np.sin(ph), sg * np.sin(ph), -np.cos(ph))
+        if rf == 0.0 or self.part == "straight":
+            return blade
+        # edge centre: tangency point + r_f n(phi_t) (inside the blade), at z = -r_f
+        rho_c = self.point_radius + sg * rb * (np.cos(a) - np.cos(pt)) - sg * rf * np.cos(pt)
+        phi = pt - u / rf if self.part == "arc" else np.clip(pt - u / rf, pt, 0.5 * np.pi)
+        n_rho_a, n_z_a = -sg * np.cos(phi), -np.sin(phi)
+        rho_a, z_a = rho_c - rf * n_rho_a, -rf - rf * n_z_a
+        d_rho_a, d_z_a = sg * np.sin(phi), -np.cos(phi)
+        if self.part == "arc":
+            return CutterProfile(rho_a, z_a, n_rho_a, n_z_a, d_rho_a, d_z_a)
+        beyond = u < self.u_min
+        rho_a = np.where(beyond, rho_c + sg * (u - self.u_min), rho_a)
+        on_arc = u < 0.0
+        return CutterProfile(*(np.where(on_arc, e, b) for e, b in zip(
+            (rho_a, z_a, n_rho_a, n_z_a, d_rho_a, d_z_a),
+            (blade.rho, blade.z, blade.n_rho, blade.n_z, blade.d_rho, blade.d_z))))
+
     def surface(self, u: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Points and unit work-outward normals of the cutter surface in S_c.
 
@@ -157,6 +218,14 @@ class HeadCutter:
         """Profile parameter of the blade point at ``depth`` (mm, >= 0) below the tip plane."""
         depth = np.asarray(depth, dtype=float)
         rf, a = self.edge_radius, self.blade_angle
+        if self.curved:
+            rb, pt = self.profile_radius, self.phi_t
+            zt = rf * (1.0 - np.sin(pt))
+            u_arc = rb * (np.arcsin(np.clip(np.sin(a) + depth / rb, -1.0, 1.0)) - a) - self.s0
+            if rf == 0.0:
+                return u_arc
+            ph = np.arcsin(np.clip(1.0 - depth / rf, np.sin(pt), 1.0))
+            return np.where(depth >= zt, u_arc, -rf * (ph - pt))
         zt = rf * (1.0 - np.sin(a))                       # depth of the tangency point
         u_line = depth / np.cos(a) - self.s0
         if rf == 0.0:

@@ -7,6 +7,13 @@ the equation of meshing (Litvin & Fuentes 2004, sec. 6.1, 20.5):
     f(u, theta, psi) = n_m . v_m = 0,    v_m = z_m x r_m - phi'(psi) k x (r_m - O_w),
 
 the normal times the velocity of the blade point relative to the work, per unit cradle rotation (mm).
+On the universal machine (:mod:`geometry.bevel.machine`) the cutter centre, its tilt and the work origin move
+with psi too, and their derivatives enter the relative velocity (Litvin & Fuentes 2004, eq. 6.1.7; Fan 2007):
+
+    v_m = z_m x r_m + Rz(psi) (Sr'(psi) e_q + R_t'(psi) r_c) - O_w'(psi) - phi'(psi) k x (r_m - O_w(psi)),
+
+with e_q = (cos q, sin q, 0).  A formate member has no envelope: its flank is the cutter surface at psi = 0,
+which the same solver finds with the equation of meshing replaced by f = Sr psi = 0.
 Grid points are fixed in the axial section of the work: for each node the two axial-section coordinates
 (axial position Z and radius rho) are prescribed and (u, theta, psi) solved with Newton on the three
 equations, vectorised over the nodes and continued from node to node (centre column first, then column by
@@ -22,7 +29,7 @@ import numpy as np
 
 from ..flank import Flank, surface_curvatures
 from .blank import BevelBlank
-from .machine import FlankCut, MemberCut, gear_settings, roll
+from .machine import FlankCut, MemberCut, cutter_to_cradle, gear_settings, roll, tilt_rotation
 
 __all__ = ["MeshingError", "SurfaceState", "surface_state", "solve_axial_points", "generate_flank",
            "generate_member", "normal_thickness", "standard_gear_cut", "axial_grid"]
@@ -82,6 +89,8 @@ def surface_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarra
                   with_work: bool = True) -> SurfaceState:
     """Evaluate the generating blade, the equation of meshing and the work point (vectorised)."""
     ms = fc.machine
+    if not ms.is_basic:
+        return _universal_state(fc, u, theta, psi, with_work)
     r_c, n_c = fc.cutter.surface(u, theta)
     r_m = _rotz(r_c + ms.cutter_center, psi)
     n_m = _rotz(n_c, psi)
@@ -90,6 +99,62 @@ def surface_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarra
     phi, dphi = roll(ms, np.asarray(psi, dtype=float))
     v = _ez_cross(r_m) - dphi[..., None] * _cross(k, d)
     f = np.einsum("...i,...i", n_m, v)
+    Z = d @ k
+    rho = np.sqrt(np.maximum(np.einsum("...i,...i", d, d) - Z ** 2, 0.0))
+    if with_work:
+        B = ms.work_basis
+        r_w = _rotz(d @ B, -phi)
+        n_w = _rotz(n_m @ B, -phi)
+    else:
+        r_w = n_w = None
+    return SurfaceState(r_w, n_w, f, Z, rho, r_m, n_m, phi)
+
+
+def _rodrigues(a: np.ndarray, ang: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Rotation of the vectors ``v`` by ``ang`` about the unit axes ``a`` (all (..., 3) / (...))."""
+    c, s = np.cos(ang)[..., None], np.sin(ang)[..., None]
+    return v * c + np.cross(a, v) * s + a * np.einsum("...i,...i", a, v)[..., None] * (1.0 - c)
+
+
+def _universal_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarray,
+                     with_work: bool = True) -> SurfaceState:
+    """:func:`surface_state` on the universal machine (module docstring): motions, tilt, swivel, formate."""
+    ms = fc.machine
+    psi = np.asarray(psi, dtype=float)
+    r_c, n_c = fc.cutter.surface(u, theta)
+    shape = r_c.shape[:-1]
+    psi_b = np.broadcast_to(psi, shape)
+    S, dS = ms.motion("radial_setting", psi_b)
+    eq = np.array([np.cos(ms.cradle_angle), np.sin(ms.cradle_angle), 0.0])
+    if ms.tilt or ms.tilt_motion:
+        i, di = ms.motion("tilt", psi_b)
+        j, dj = ms.motion("swivel", psi_b)
+        a, a_perp, i = tilt_rotation(ms, i, j)
+        rt_c, nt_c = _rodrigues(a, i, r_c), _rodrigues(a, i, n_c)
+        # d(R_t r_c)/dpsi = dR/di r_c i' + dR/db r_c b', b = q - j
+        c_, s_ = np.cos(i)[..., None], np.sin(i)[..., None]
+        ar = np.einsum("...i,...i", a, r_c)[..., None]
+        dR_di = -r_c * s_ + np.cross(a, r_c) * c_ + a * ar * s_
+        dR_db = np.cross(a_perp, r_c) * s_ + (a_perp * ar + a * np.einsum("...i,...i", a_perp, r_c)[..., None]) \
+            * (1.0 - c_)
+        drt = dR_di * di[..., None] - dR_db * dj[..., None]
+    else:
+        rt_c, nt_c, drt = r_c, n_c, 0.0
+    r_p = rt_c + S[..., None] * eq
+    r_m = _rotz(r_p, psi_b)
+    n_m = _rotz(nt_c, psi_b)
+    k = ms.work_axis
+    Em, dEm = ms.motion("blank_offset", psi_b)
+    XB, dXB = ms.motion("sliding_base", psi_b)
+    O = _vectors(ms.center_to_back * k[0] + 0.0 * Em, Em, XB + ms.center_to_back * k[2])
+    dO = _vectors(np.zeros_like(Em), dEm, dXB)
+    d = r_m - O
+    phi, dphi = roll(ms, psi_b)
+    if ms.formate:
+        f = ms.radial_setting * psi_b
+    else:
+        v = _ez_cross(r_m) + _rotz(dS[..., None] * eq + drt, psi_b) - dO - dphi[..., None] * _cross(k, d)
+        f = np.einsum("...i,...i", n_m, v)
     Z = d @ k
     rho = np.sqrt(np.maximum(np.einsum("...i,...i", d, d) - Z ** 2, 0.0))
     if with_work:
@@ -182,6 +247,8 @@ def _guess(fc: FlankCut, Z: float, rho: float) -> np.ndarray:
     ms = fc.machine
     r_m = ms.work_origin + ms.work_basis @ np.array([rho, 0.0, Z])
     r_c = r_m - ms.cutter_center
+    if ms.tilt:
+        r_c = cutter_to_cradle(ms)[:3, :3].T @ r_c
     return np.array([float(fc.cutter.u_at_depth(max(-r_c[2], 0.0))), np.arctan2(r_c[1], r_c[0]), 0.0])
 
 
