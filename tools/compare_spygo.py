@@ -47,8 +47,8 @@ import numpy as np
 from scipy.optimize import root
 
 from geometry.bevel.cutter import HeadCutter
-from geometry.bevel.generation import solve_axial_points, surface_state
-from geometry.bevel.machine import MOTIONS, FlankCut, MachineSettings, cutter_to_cradle, tilt_rotation  # noqa: F401
+from geometry.bevel.generation import blade_coordinates, solve_axial_points, surface_state
+from geometry.bevel.machine import FlankCut, MachineSettings
 
 NOTEBOOK = dict(
     system=dict(HAND="Left", taper="Standard", hypoidOffset=0, gearGenType="generated"),
@@ -142,31 +142,6 @@ def settings_dict(fc: FlankCut) -> dict:
     return dict(machine=m, cutter=dict(point_radius=cu.point_radius, blade_angle=cu.blade_angle, blade=cu.blade,
                                        edge_radius=cu.edge_radius, profile_radius=cu.profile_radius
                                        if np.isfinite(cu.profile_radius) else "inf"))
-
-
-def guess_from_point(fc: FlankCut, r_w: np.ndarray, psi: np.ndarray) -> np.ndarray:
-    """Our (u, theta, psi) for a work point ``r_w`` (n, 3) generated at cradle roll ``psi`` (n,)."""
-    from geometry.bevel.machine import roll
-    ms = fc.machine
-    out = np.empty((len(psi), 3))
-    for n, (r, p) in enumerate(zip(r_w, psi)):
-        phi = float(roll(ms, np.array(p))[0])
-        c, s = math.cos(phi), math.sin(phi)
-        Em, XB = float(ms.motion("blank_offset", np.array(p))[0]), float(ms.motion("sliding_base", np.array(p))[0])
-        O = np.array([ms.center_to_back * ms.work_axis[0], Em, XB + ms.center_to_back * ms.work_axis[2]])
-        r_m = O + ms.work_basis @ (np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]]) @ r)
-        cp, sp = math.cos(-p), math.sin(-p)
-        r_p = np.array([[cp, -sp, 0], [sp, cp, 0], [0, 0, 1.0]]) @ r_m
-        S = float(ms.motion("radial_setting", np.array(p))[0])
-        i = float(ms.motion("tilt", np.array(p))[0])
-        j = float(ms.motion("swivel", np.array(p))[0])
-        r_c = r_p - S * np.array([math.cos(ms.cradle_angle), math.sin(ms.cradle_angle), 0.0])
-        b = ms.cradle_angle - j
-        Rb = np.array([[math.cos(b), -math.sin(b), 0], [math.sin(b), math.cos(b), 0], [0, 0, 1.0]])
-        Rx = np.array([[1, 0, 0], [0, math.cos(i), -math.sin(i)], [0, math.sin(i), math.cos(i)]])
-        r_c = (Rb @ Rx @ Rb.T).T @ r_c
-        out[n] = [float(fc.cutter.u_at_depth(max(-r_c[2], 0.0))), math.atan2(r_c[1], r_c[0]), p]
-    return out
 
 
 def solve_ours(fc: FlankCut, z: np.ndarray, R: np.ndarray, x0: np.ndarray):
@@ -292,6 +267,13 @@ def _spygo_flank(H, geo, kin, ds, base, member, flank, edit, z, R, trip, steps: 
     return dd, p, n, t, res
 
 
+def SUBSET(n_prof: int, n_face: int) -> np.ndarray:
+    """The stored nodes: every other profile row and face column of the grid (flattened column-major)."""
+    m = np.zeros((n_prof, n_face), bool)
+    m[::2, ::3] = True
+    return m.ravel(order="F")
+
+
 def run(spygo_dir: str, n_prof: int = 5, n_face: int = 7, tol: float = 1e-9) -> dict:
     """The comparison (module docstring); ``tol`` (mm) is the residual below which a SpyGO point counts."""
     core, geo, kin, ds = load_spygo(spygo_dir)
@@ -312,7 +294,7 @@ def run(spygo_dir: str, n_prof: int = 5, n_face: int = 7, tol: float = 1e-9) -> 
         fc = ours(J, getattr(getattr(dd, f"{member}_cutter_data"), flank), flank, formate)
         # SpyGO's tool is defined past its tip (csi < 0) too: a root there is not a cut point
         good = np.all(np.isfinite(p_s), axis=1) & (res < tol) & (t_s[:, 0] >= 0.0)
-        x0 = guess_from_point(fc, p_s[good], t_s[good, 2])
+        x0 = blade_coordinates(fc, p_s[good], t_s[good, 2])
         p_o, n_o, ok, x = solve_ours(fc, z[good], R[good], x0)
         ok &= x[:, 0] >= fc.cutter.u_min - 1e-9
         dp = np.linalg.norm(p_o - p_s[good], axis=1)
@@ -341,9 +323,10 @@ def run(spygo_dir: str, n_prof: int = 5, n_face: int = 7, tol: float = 1e-9) -> 
                          change_from_base_um=change, kinematics_check=kin_dev,
                          spygo_max_residual_mm=float(res[good].max()),
                          psi_range=[float(t_s[good, 2].min()), float(t_s[good, 2].max())]))
+        keep = good & SUBSET(n_prof, n_face)
         store.append(dict(variant=name, member=member, flank=flank, formate=formate, settings=settings_dict(fc),
-                          z=z[good].tolist(), R=R[good].tolist(), spygo_points=p_s[good].tolist(),
-                          spygo_normals=n_s[good].tolist(), spygo_psi=t_s[good, 2].tolist()))
+                          z=z[keep].tolist(), R=R[keep].tolist(), spygo_points=p_s[keep].tolist(),
+                          spygo_normals=n_s[keep].tolist(), spygo_psi=t_s[keep, 2].tolist()))
         print(f"{name:32s} {member:6s} {flank:7s} {good.sum():2d}/{len(z)} ok={ok.sum():2d} change {change:8.1f} um | "
               f"point {dp.max() * 1e3:8.5f} um normal {dn.max():.1e} | rho 2e6: {dpa:8.5f} um {dna:.1e} "
               f"(kin {kin_dev:.0e})", flush=True)
@@ -354,8 +337,9 @@ def run(spygo_dir: str, n_prof: int = 5, n_face: int = 7, tol: float = 1e-9) -> 
         pair="SpyGO example notebook hypoid_test.ipynb cell 2: 19/62 spiral bevel, shaft angle 95 deg, module 4.169 "
              "mm, face 36.83 mm, spiral 35 deg, cutter radius 95.25 mm, left hand; blank and settings designed by "
              "SpyGO (Hypoid.from_macro_geometry)",
-        grid=f"SpyGO compute_zr_grid, {n_prof} x {n_face} over the active flank; points kept where SpyGO's own "
-             f"residual (axial section and equation of meshing) is below {tol} mm",
+        grid=f"SpyGO compute_zr_grid, {n_prof} x {n_face} over the active flank (the table); points kept where "
+             f"SpyGO's own residual (axial section and equation of meshing) is below {tol} mm and its blade "
+             "parameter is on the tool (csi >= 0); 'variants' stores every other row and every third column",
         normals="SpyGO's normal points out of the blade: n_SpyGO = -n_ours",
         straight_blade="SpyGO models a straight blade as an arc of radius 2e6 mm; *_rho2e6 columns: ours with "
                        "the same arc",
@@ -372,7 +356,7 @@ def main() -> None:
     res = run(a.spygo)
     if a.out:
         with open(a.out, "w") as f:
-            json.dump(res, f, indent=1)
+            json.dump(res, f)
 
 
 if __name__ == "__main__":

@@ -31,7 +31,7 @@ from ..flank import Flank, surface_curvatures
 from .blank import BevelBlank
 from .machine import FlankCut, MemberCut, cutter_to_cradle, gear_settings, roll, tilt_rotation
 
-__all__ = ["MeshingError", "SurfaceState", "surface_state", "solve_axial_points", "generate_flank",
+__all__ = ["MeshingError", "SurfaceState", "surface_state", "blade_coordinates", "solve_axial_points", "generate_flank",
            "generate_member", "normal_thickness", "standard_gear_cut", "axial_grid"]
 
 
@@ -164,6 +164,30 @@ def _universal_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.nda
     else:
         r_w = n_w = None
     return SurfaceState(r_w, n_w, f, Z, rho, r_m, n_m, phi)
+
+
+def blade_coordinates(fc: FlankCut, r_w: np.ndarray, psi: np.ndarray) -> np.ndarray:
+    """Blade parameters (u, theta, psi) of work points ``r_w`` (n, 3) that the blade passes at cradle roll
+    ``psi`` (n,): the work point carried to the cutter frame (the inverse of :func:`surface_state`'s chain),
+    u from its depth below the tip plane.  A starting guess for :func:`solve_axial_points`, exact for a point
+    on the blade surface; shape (n, 3)."""
+    ms = fc.machine
+    psi = np.asarray(psi, dtype=float)
+    phi, _ = roll(ms, psi)
+    Em, _ = ms.motion("blank_offset", psi)
+    XB, _ = ms.motion("sliding_base", psi)
+    S, _ = ms.motion("radial_setting", psi)
+    k = ms.work_axis
+    O = _vectors(ms.center_to_back * k[0] + 0.0 * Em, Em, XB + ms.center_to_back * k[2])
+    r_m = O + _rotz(np.asarray(r_w, dtype=float), phi) @ ms.work_basis.T
+    r_c = _rotz(r_m, -psi) - S[..., None] * np.array([np.cos(ms.cradle_angle), np.sin(ms.cradle_angle), 0.0])
+    if ms.tilt or ms.tilt_motion:
+        i, _ = ms.motion("tilt", psi)
+        j, _ = ms.motion("swivel", psi)
+        a, _, i = tilt_rotation(ms, i, j)
+        r_c = _rodrigues(a, -i, r_c)
+    u = fc.cutter.u_at_depth(np.maximum(-r_c[..., 2], 0.0))
+    return _vectors(u, np.arctan2(r_c[..., 1], r_c[..., 0]), psi)
 
 
 def _residual(fc, x, Zt, Rt):

@@ -82,7 +82,7 @@ class MachineSettings:
         ``x0 + sum_k a_k psi^k / k!``.  Empty: the setting is constant.
     formate : bool
         True: the member is not generated (no roll; the cutter is plunged); ``ratio_of_roll`` and the roll and
-        motion terms are then unused and must be zero.
+        motion terms must then be zero.
     """
 
     radial_setting: float
@@ -124,7 +124,9 @@ class MachineSettings:
             if len(a) > MAX_ORDER or not all(np.isfinite(a)):
                 raise ValueError(f"{name} = {a!r} is outside the allowed range: at most {MAX_ORDER} finite "
                                  "derivatives")
-        if self.formate and (self.roll_coefficients[1:].any() or any(any(getattr(self, n)) for n in MOTIONS)):
+        rolls = (self.modified_roll_c, self.modified_roll_d, self.modified_roll_e, self.modified_roll_f,
+                 self.modified_roll_g)
+        if self.formate and (any(rolls) or self.ratio_of_roll or any(any(getattr(self, n)) for n in MOTIONS)):
             raise ValueError("formate = True with a modified roll or a motion: a formate member has no roll; "
                              "allowed: all roll and motion terms 0")
 
