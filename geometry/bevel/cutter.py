@@ -41,6 +41,8 @@ import numpy as np
 
 __all__ = ["HeadCutter", "CutterProfile"]
 
+_INF = float("inf")
+
 
 @dataclass(frozen=True)
 class CutterProfile:
@@ -116,7 +118,7 @@ class HeadCutter:
     @property
     def curved(self) -> bool:
         """True for a curved (circular-arc) blade."""
-        return bool(np.isfinite(self.profile_radius))
+        return self.profile_radius != _INF
 
     @property
     def phi_t(self) -> float:

@@ -129,6 +129,9 @@ class MachineSettings:
         if self.formate and (any(rolls) or self.ratio_of_roll or any(any(getattr(self, n)) for n in MOTIONS)):
             raise ValueError("formate = True with a modified roll or a motion: a formate member has no roll; "
                              "allowed: all roll and motion terms 0")
+        object.__setattr__(self, "_basic", not (
+            self.tilt or self.swivel or self.formate or self.modified_roll_e or self.modified_roll_f
+            or self.modified_roll_g or any(getattr(self, n) for n in MOTIONS)))
 
     @property
     def roll_coefficients(self) -> np.ndarray:
@@ -140,8 +143,7 @@ class MachineSettings:
     @property
     def is_basic(self) -> bool:
         """True for the basic cradle machine: no tilt, swivel, motions, roll terms above D, not formate."""
-        return not (self.tilt or self.swivel or self.formate or self.modified_roll_e or self.modified_roll_f
-                    or self.modified_roll_g or any(getattr(self, n) for n in MOTIONS))
+        return self._basic
 
     def motion(self, name: str, psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """A setting at the cradle roll ``psi`` and its derivative by psi.
