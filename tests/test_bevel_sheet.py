@@ -34,7 +34,8 @@ def test_sheet_written_and_read_back_is_unchanged():
     ms = dataclasses.replace(fc0.machine, tilt=0.02, swivel=-0.4, modified_roll_c=0.01, modified_roll_g=-3.0,
                              radial_motion=(0.5, 0.0, 2.0), helical_motion=(1.0,), tilt_motion=(1e-3, 2e-3),
                              swivel_motion=(0.1,), vertical_motion=(0.0, 0.3))
-    fc = FlankCut(ms, dataclasses.replace(fc0.cutter, profile_radius=450.0))
+    fc = FlankCut(ms, dataclasses.replace(fc0.cutter, profile_radius=450.0, toprem_depth=1.5, toprem_radius=20.0,
+                                          flankrem_depth=7.0, flankrem_radius=35.0))
     sheet = flank_sheet(fc)
     assert sheet["modified_roll_2C"] == pytest.approx(0.02) and sheet["modified_roll_720G"] == pytest.approx(-2160.0)
     assert sheet["tilt_deg"] == pytest.approx(np.rad2deg(0.02)) and sheet["profile_radius_mm"] == 450.0

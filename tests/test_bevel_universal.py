@@ -83,6 +83,15 @@ def test_curved_blade_profile():
         on = u >= 0
         assert np.allclose(np.hypot(p.rho[on] - c[0], p.z[on] - c[1]), 300.0, atol=1e-9)
         assert np.allclose(c[0] - p.rho[on], 300.0 * -p.n_rho[on], atol=1e-9)
+        # toprem and flankrem: arcs of their radii from their depths, tangent (G1) to the blade
+        cr = HeadCutter(60.0, np.deg2rad(20.0), blade, 1.0, profile_radius=400.0, toprem_depth=1.2,
+                        toprem_radius=15.0, flankrem_depth=6.0, flankrem_radius=30.0)
+        u0, ph0, r0, z0, kp = cr.chain
+        assert np.allclose(z0[1:], [-1.2, -6.0]) and np.allclose(kp, [1 / 15.0, 1 / 400.0, 1 / 30.0])
+        q = cr.profile(np.r_[u0[1:] - 1e-9, u0[1:] + 1e-9])
+        assert np.allclose(q.n_rho[:2], q.n_rho[2:], atol=1e-9) and np.allclose(q.rho[:2], q.rho[2:], atol=1e-8)
+        u = np.linspace(cr.u_min, 8.0, 4001)
+        assert np.allclose(cr.u_at_depth(-cr.profile(u).z), u, atol=1e-9)
         # a very large radius is the straight blade
         s, b = HeadCutter(60.0, 0.35, blade, 1.5).profile(u), HeadCutter(60.0, 0.35, blade, 1.5,
                                                                           profile_radius=1e9).profile(u)
@@ -101,8 +110,7 @@ def test_bad_settings_name_the_field():
 
 
 def _flank_cut(d: dict) -> FlankCut:
-    c = dict(d["cutter"])
-    c["profile_radius"] = float(c["profile_radius"])
+    c = {k: (float(v) if v == "inf" else v) for k, v in d["cutter"].items()}
     return FlankCut(MachineSettings(**d["machine"]), HeadCutter(**c))
 
 

@@ -130,18 +130,29 @@ def ours(J: np.ndarray, cutter, flank: str, formate: bool = False) -> FlankCut:
                          **(dict(ratio_of_roll=0.0) if formate else roll))
     t = cutter
     rho = float(t.RHO) if str(t.TYPE).lower() == "curved" else float("inf")
+    rem = {}
+    if str(t.topremTYPE).lower() == "blended":
+        rem.update(toprem_depth=float(t.topremDEPTH), toprem_radius=float(t.topremRADIUS))
+    if str(t.flankremTYPE).lower() == "blended":
+        rem.update(flankrem_depth=float(t.flankremDEPTH), flankrem_radius=float(t.flankremRADIUS))
     cu = HeadCutter(float(t.POINTRADIUS), math.radians(float(t.BLADEANGLE)),
-                    "outside" if flank == "concave" else "inside", float(t.EDGERADIUS), profile_radius=rho)
+                    "outside" if flank == "concave" else "inside", float(t.EDGERADIUS), profile_radius=rho, **rem)
     return FlankCut(ms, cu)
 
 
 def settings_dict(fc: FlankCut) -> dict:
-    """Our settings of a flank cut as plain JSON values (the stored reference rebuilds them)."""
-    ms, cu = fc.machine, fc.cutter
-    m = {k: (list(v) if isinstance(v, tuple) else v) for k, v in ms.__dict__.items()}
-    return dict(machine=m, cutter=dict(point_radius=cu.point_radius, blade_angle=cu.blade_angle, blade=cu.blade,
-                                       edge_radius=cu.edge_radius, profile_radius=cu.profile_radius
-                                       if np.isfinite(cu.profile_radius) else "inf"))
+    """Our settings of a flank cut as plain JSON values (the stored reference rebuilds them; inf as "inf")."""
+    import dataclasses
+
+    def plain(obj):
+        out = {}
+        for f in dataclasses.fields(obj):
+            v = getattr(obj, f.name)
+            out[f.name] = list(v) if isinstance(v, tuple) else ("inf" if v == float("inf") else v)
+        return out
+    cu = plain(fc.cutter)
+    cu.pop("part")
+    return dict(machine=plain(fc.machine), cutter=cu)
 
 
 def solve_ours(fc: FlankCut, z: np.ndarray, R: np.ndarray, x0: np.ndarray):
@@ -166,6 +177,36 @@ def spygo_generated(geo, kin, dd, member, flank, z, R, trip):
             mesh = float(n[k] @ (V @ np.r_[p[k], 1.0])[:3])
             res[k] = max(abs(np.hypot(p[k, 0], p[k, 1]) - R[k]), abs(abs(p[k, 2]) - abs(z[k])), abs(mesh))
     return p, n, t, res
+
+
+def spygo_generated_rem(kin, dd, member, flank, z, R, trip):
+    """As :func:`spygo_generated` for a blade with toprem or flankrem: SpyGO's own sampling routine builds the
+    blade without them, so its blade with them (``casadi_tool_fun(flank, toprem=True)``) and its kinematics are
+    solved here for (csi, theta, phi) at (z, R) with casadi's Newton, the same three equations."""
+    import casadi as ca
+    ggt, _, Vs = kin.casadi_machine_kinematics(member, dd.system_data.hand)
+    M = np.array(dd.extract_machine_settings_matrix(member, flank), dtype=float)
+    pT, nT, _ = kin.casadi_tool_fun(flank, toprem=True, flankrem=True)
+    # SpyGO's CutterField.extract_settings fails for a blended toprem (its toprem angle is left unassigned):
+    # the ten-entry tool vector in its order, angles of the blended pieces 0, a straight blade its 2e6 mm arc
+    t = getattr(getattr(dd, f"{member}_cutter_data"), flank)
+    rho = float(t.RHO) if str(t.TYPE).lower() == "curved" else 2e6
+    tool = np.array([t.POINTRADIUS, t.EDGERADIUS, rho, t.BLADEANGLE, t.topremDEPTH, t.topremRADIUS, 0.0,
+                     t.flankremDEPTH, t.flankremRADIUS, 0.0], dtype=float)
+    x = ca.SX.sym("x", 3)
+    par = ca.SX.sym("p", 2)
+    G = ggt(M, x[2])
+    pg = G @ ca.vertcat(pT(tool, x[:2]), 1)
+    ng = G @ ca.vertcat(nT(tool, x[:2]), 0)
+    g = ca.vertcat(ca.sqrt(pg[0] ** 2 + pg[1] ** 2) - par[0], pg[2] - par[1], ng.T @ Vs(M, x[2]) @ pg)
+    solve = ca.rootfinder("s", "newton", {"x": x, "p": par, "g": g}, {"error_on_fail": False, "abstol": 1e-13})
+    gf = ca.Function("g", [x, par], [g, pg[:3], ng[:3]])
+    P, N, T, res = [], [], [], []
+    for zi, Ri, t0 in zip(z, R, trip.T):
+        xs = np.array(solve(t0, [Ri, zi])).ravel()
+        gv, pv, nv = (np.array(v).ravel() for v in gf(xs, [Ri, zi]))
+        P.append(pv), N.append(nv), T.append(xs), res.append(float(np.max(np.abs(gv))))
+    return np.array(P), np.array(N), np.array(T), np.array(res)
 
 
 def spygo_formate(kin, dd, member, flank, z, R, trip):
@@ -236,6 +277,14 @@ def variants(base_psi: float, R_mean: float):
             sw(dd, ds, member, flank, w)
         out.append((f"modified swivel order {k} (tilt 1 deg)", "gear", "convex", edit))
     out.append(("curved blade rho 300 mm", "pinion", "convex", curved))
+
+    def rems(dd, ds, member, flank, w=1.0):
+        t = getattr(getattr(dd, f"{member}_cutter_data"), flank)
+        t.topremTYPE, t.topremDEPTH, t.topremRADIUS = "BLENDED", 2.5, 25.0 / w
+        t.flankremTYPE, t.flankremDEPTH, t.flankremRADIUS = "BLENDED", 6.0, 40.0 / w
+    rems.rem = True
+    out.append(("toprem and flankrem (blended)", "pinion", "concave", rems))
+    out.append(("toprem and flankrem (blended)", "gear", "convex", rems))
     out.append(("formate gear", "gear", "concave", "formate"))
     out.append(("formate gear", "gear", "convex", "formate"))
     return out
@@ -259,10 +308,12 @@ def _spygo_flank(H, geo, kin, ds, base, member, flank, edit, z, R, trip, steps: 
         return (dd,) + spygo_formate(kin, dd, member, flank, z, R, trip.T)
     if edit is None:
         return (dd,) + spygo_generated(geo, kin, dd, member, flank, z, R, trip)
+    sample = spygo_generated_rem if getattr(edit, "rem", False) else spygo_generated
     for w in np.linspace(1.0 / steps, 1.0, steps):
         dd = copy.deepcopy(base)
         edit(dd, ds, member, flank, w)
-        p, n, t, res = spygo_generated(geo, kin, dd, member, flank, z, R, trip)
+        p, n, t, res = (spygo_generated_rem(kin, dd, member, flank, z, R, trip) if sample is spygo_generated_rem
+                        else spygo_generated(geo, kin, dd, member, flank, z, R, trip))
         trip = np.where(np.isfinite(t.T) & (res < 1e-6)[None, :], t.T, trip)
     return dd, p, n, t, res
 
@@ -317,7 +368,10 @@ def run(spygo_dir: str, n_prof: int = 5, n_face: int = 7, tol: float = 1e-9) -> 
             change = float(np.max(np.linalg.norm(p_s[good] - base_pts["tilt"][good], axis=1)) * 1e3)
         if name.startswith("tilt") and member == "gear":
             base_pts["tilt"] = p_s
+        pieces = np.bincount(np.searchsorted(cu.chain[0], x[:, 0], side="right"), minlength=len(cu.chain[0]) + 1) \
+            if cu.general else np.bincount((x[:, 0] >= 0).astype(int), minlength=2)
         rows.append(dict(variant=name, member=member, flank=flank, points=int(good.sum()), grid=len(z),
+                         points_per_blade_piece=pieces.tolist(),
                          ours_converged=int(ok.sum()), max_point_dev_um=float(dp.max() * 1e3),
                          max_normal_dev=float(dn.max()), max_point_dev_um_rho2e6=dpa, max_normal_dev_rho2e6=dna,
                          change_from_base_um=change, kinematics_check=kin_dev,
@@ -329,7 +383,7 @@ def run(spygo_dir: str, n_prof: int = 5, n_face: int = 7, tol: float = 1e-9) -> 
                           spygo_normals=n_s[keep].tolist(), spygo_psi=t_s[keep, 2].tolist()))
         print(f"{name:32s} {member:6s} {flank:7s} {good.sum():2d}/{len(z)} ok={ok.sum():2d} change {change:8.1f} um | "
               f"point {dp.max() * 1e3:8.5f} um normal {dn.max():.1e} | rho 2e6: {dpa:8.5f} um {dna:.1e} "
-              f"(kin {kin_dev:.0e})", flush=True)
+              f"(kin {kin_dev:.0e}) pieces {pieces.tolist()}", flush=True)
     commit = subprocess.run(["git", "-C", spygo_dir, "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
     return dict(provenance=dict(
         code="SpyGO (github haomjc/SpyGO, the hypoid package), run by tools/compare_spygo.py",
@@ -337,6 +391,8 @@ def run(spygo_dir: str, n_prof: int = 5, n_face: int = 7, tol: float = 1e-9) -> 
         pair="SpyGO example notebook hypoid_test.ipynb cell 2: 19/62 spiral bevel, shaft angle 95 deg, module 4.169 "
              "mm, face 36.83 mm, spiral 35 deg, cutter radius 95.25 mm, left hand; blank and settings designed by "
              "SpyGO (Hypoid.from_macro_geometry)",
+        pieces="points_per_blade_piece: our nodes on the edge radius, then on each blade piece from the tip "
+               "(toprem, blade, flankrem)",
         grid=f"SpyGO compute_zr_grid, {n_prof} x {n_face} over the active flank (the table); points kept where "
              f"SpyGO's own residual (axial section and equation of meshing) is below {tol} mm and its blade "
              "parameter is on the tool (csi >= 0); 'variants' stores every other row and every third column",

@@ -6,7 +6,7 @@ centre to back, sliding base, ratio of roll and the modified roll with Gleason's
 24E, 120F, 720G), the helical, vertical and radial motions and the modified tilt and swivel as derivatives by
 the cradle roll (k = 1..6; the sheet's factorial scaling: the setting is ``x0 + sum_k a_k psi^k / k!``),
 generated or formate; the cutter's blade, point radius, blade angle, edge radius and, for a curved blade, its
-profile radius.  :func:`flank_sheet` and :func:`flank_from_sheet` are exact inverses up to the degree <-> rad
+profile radius, and a blended toprem and flankrem (depth and radius).  :func:`flank_sheet` and :func:`flank_from_sheet` are exact inverses up to the degree <-> rad
 conversion (a relative 1e-16).  Frames and signs are those of :mod:`geometry.bevel.machine`.
 """
 from __future__ import annotations
@@ -18,7 +18,7 @@ import numpy as np
 from .cutter import HeadCutter
 from .machine import FlankCut, MachineSettings, MemberCut
 
-__all__ = ["MACHINE_KEYS", "CUTTER_KEYS", "ROLL_KEYS", "MOTION_KEYS", "flank_sheet", "flank_from_sheet",
+__all__ = ["MACHINE_KEYS", "CUTTER_KEYS", "REM_KEYS", "ROLL_KEYS", "MOTION_KEYS", "flank_sheet", "flank_from_sheet",
            "member_sheet", "member_from_sheet", "sheet_toml"]
 
 MACHINE_KEYS = {                 # sheet key -> (MachineSettings field, factor from sheet units to ours)
@@ -48,6 +48,8 @@ CUTTER_KEYS = {
     "blade_angle_deg": ("blade_angle", math.pi / 180),
     "edge_radius_mm": ("edge_radius", 1.0),
 }
+REM_KEYS = {"toprem_depth_mm": "toprem_depth", "toprem_radius_mm": "toprem_radius",
+            "flankrem_depth_mm": "flankrem_depth", "flankrem_radius_mm": "flankrem_radius"}
 
 
 def flank_sheet(fc: FlankCut) -> dict:
@@ -68,6 +70,10 @@ def flank_sheet(fc: FlankCut) -> dict:
         out[key] = float(getattr(cu, name)) / f
     if cu.curved:
         out["profile_radius_mm"] = float(cu.profile_radius)
+    for name in ("toprem", "flankrem"):
+        if getattr(cu, f"{name}_depth"):
+            out[f"{name}_depth_mm"] = float(getattr(cu, f"{name}_depth"))
+            out[f"{name}_radius_mm"] = float(getattr(cu, f"{name}_radius"))
     return out
 
 
@@ -90,7 +96,8 @@ def flank_from_sheet(sheet: dict) -> FlankCut:
     ms = MachineSettings(formate=formate, **kw)
     cu = HeadCutter(float(sheet["point_radius_mm"]), float(sheet["blade_angle_deg"]) * math.pi / 180,
                     sheet["blade"], float(sheet.get("edge_radius_mm", 0.0)),
-                    profile_radius=float(sheet.get("profile_radius_mm", np.inf)))
+                    profile_radius=float(sheet.get("profile_radius_mm", np.inf)),
+                    **{f: float(sheet[k]) for k, f in REM_KEYS.items() if k in sheet})
     return FlankCut(ms, cu)
 
 

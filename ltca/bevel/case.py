@@ -58,6 +58,10 @@ def _flank_sheet(blade: str) -> Table:
         "blade_angle_deg": Num(0, 45, "deg", required=True),
         "edge_radius_mm": Num(0, 100, "mm", default=0.0),
         "profile_radius_mm": Num(0, 1e7, "mm", default=None, lo_open=True, note="curved blade; absent: straight"),
+        "toprem_depth_mm": Num(0, 1e3, "mm", default=None, lo_open=True, note="blended toprem from this depth"),
+        "toprem_radius_mm": Num(0, 1e7, "mm", default=None, lo_open=True),
+        "flankrem_depth_mm": Num(0, 1e3, "mm", default=None, lo_open=True, note="blended flankrem from this depth"),
+        "flankrem_radius_mm": Num(0, 1e7, "mm", default=None, lo_open=True),
     }, required=True)
 
 
