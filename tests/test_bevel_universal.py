@@ -9,8 +9,8 @@ import pytest
 
 from geometry.bevel.blank import BevelBasicData, design_blank
 from geometry.bevel.cutter import HeadCutter
-from geometry.bevel.generation import (_universal_state, blade_coordinates, generate_member, solve_axial_points,
-                                       standard_gear_cut, surface_state)
+from geometry.bevel.generation import generate_member, solve_axial_points, standard_gear_cut, surface_state
+from geometry.bevel.universal import blade_coordinates, universal_state
 from geometry.bevel.machine import FlankCut, MachineSettings
 
 REF = Path(__file__).parent / "reference"
@@ -22,11 +22,11 @@ def gear_fc():
     return standard_gear_cut(bl).concave
 
 
-def test_basic_settings_reproduce_the_former_flanks_bit_for_bit():
+def test_basic_settings_reproduce_the_basic_cradle_flanks_bit_for_bit():
     """The shipped pair (gear standard cut, pinion synthesised) through the whole chain: synthesis and flanks.
 
-    The reference arrays are our own earlier output (the generator before the universal machine, same grid):
-    used for this identity check only, never as evidence of correctness."""
+    The reference arrays are our own output of the basic cradle model (no tilt, swivel, motions; straight
+    blades) on the same grid, kept for this identity check only, never as evidence of correctness."""
     from ltca.bevel.analysis import build_pair
     from ltca.bevel.case import load_bevel_case
     ref = np.load(REF / "bevel_flanks_cao2008_basic.npz")
@@ -42,7 +42,7 @@ def test_basic_settings_reproduce_the_former_flanks_bit_for_bit():
 def test_universal_path_equals_basic_path_on_basic_settings(gear_fc):
     rng = np.random.default_rng(1)
     u, th, psi = rng.uniform(-1, 8, 200), rng.uniform(-0.3, 0.3, 200), rng.uniform(-0.3, 0.3, 200)
-    a, b = surface_state(gear_fc, u, th, psi), _universal_state(gear_fc, u, th, psi)
+    a, b = surface_state(gear_fc, u, th, psi), universal_state(gear_fc, u, th, psi)
     for k in ("r_w", "n_w", "f", "Z", "rho", "phi"):
         assert np.allclose(getattr(a, k), getattr(b, k), rtol=0, atol=1e-12), k
 

@@ -47,7 +47,8 @@ import numpy as np
 from scipy.optimize import root
 
 from geometry.bevel.cutter import HeadCutter
-from geometry.bevel.generation import blade_coordinates, solve_axial_points, surface_state
+from geometry.bevel.generation import solve_axial_points, surface_state
+from geometry.bevel.universal import blade_coordinates
 from geometry.bevel.machine import FlankCut, MachineSettings
 
 NOTEBOOK = dict(

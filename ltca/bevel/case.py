@@ -18,7 +18,7 @@ from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
-from ..validation import Bool, DesignError, Int, List, Num, Str, Table, check_kind, check_table  # noqa: F401
+from ..validation import DesignError, Int, List, Num, Str, Table, check_kind, check_table
 from .model import BevelMounting
 
 __all__ = ["load_bevel_case", "bevel_case_from_data"]
