@@ -7,6 +7,14 @@ the equation of meshing (Litvin & Fuentes 2004, sec. 6.1, 20.5):
     f(u, theta, psi) = n_m . v_m = 0,    v_m = z_m x r_m - phi'(psi) k x (r_m - O_w),
 
 the normal times the velocity of the blade point relative to the work, per unit cradle rotation (mm).
+On the universal machine (:mod:`geometry.bevel.machine`) the cutter centre, its tilt and the work origin move
+with psi too, and their derivatives enter the relative velocity (Litvin & Fuentes 2004, sec. 6.1; Fan, J. Mech.
+Des. 129 (2007) 31-37):
+
+    v_m = z_m x r_m + Rz(psi) (Sr'(psi) e_q + R_t'(psi) r_c) - O_w'(psi) - phi'(psi) k x (r_m - O_w(psi)),
+
+with e_q = (cos q, sin q, 0).  A formate member has no envelope: its flank is the cutter surface at psi = 0,
+which the same solver finds with the equation of meshing replaced by f = Sr psi = 0.
 Grid points are fixed in the axial section of the work: for each node the two axial-section coordinates
 (axial position Z and radius rho) are prescribed and (u, theta, psi) solved with Newton on the three
 equations, vectorised over the nodes and continued from node to node (centre column first, then column by
@@ -22,7 +30,7 @@ import numpy as np
 
 from ..flank import Flank, surface_curvatures
 from .blank import BevelBlank
-from .machine import FlankCut, MemberCut, gear_settings, roll
+from .machine import FlankCut, MemberCut, cutter_to_cradle, gear_settings, roll
 
 __all__ = ["MeshingError", "SurfaceState", "surface_state", "solve_axial_points", "generate_flank",
            "generate_member", "normal_thickness", "standard_gear_cut", "axial_grid"]
@@ -82,6 +90,9 @@ def surface_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarra
                   with_work: bool = True) -> SurfaceState:
     """Evaluate the generating blade, the equation of meshing and the work point (vectorised)."""
     ms = fc.machine
+    if not ms.is_basic:
+        from .universal import universal_state
+        return universal_state(fc, u, theta, psi, with_work)
     r_c, n_c = fc.cutter.surface(u, theta)
     r_m = _rotz(r_c + ms.cutter_center, psi)
     n_m = _rotz(n_c, psi)
@@ -182,6 +193,8 @@ def _guess(fc: FlankCut, Z: float, rho: float) -> np.ndarray:
     ms = fc.machine
     r_m = ms.work_origin + ms.work_basis @ np.array([rho, 0.0, Z])
     r_c = r_m - ms.cutter_center
+    if ms.tilt:
+        r_c = cutter_to_cradle(ms)[:3, :3].T @ r_c
     return np.array([float(fc.cutter.u_at_depth(max(-r_c[2], 0.0))), np.arctan2(r_c[1], r_c[0]), 0.0])
 
 

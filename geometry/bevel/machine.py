@@ -16,6 +16,23 @@ Theory*, 2nd ed. 2004, ch. 20-21, and Litvin NASA CR-4342, 1990, with our own si
   by psi about +z_m (Cao et al. 2008, Eq. 8).  Pure rolling of the pitch cone (angle g) on the generating crown
   gear needs ``m_a = cos(g - gm) / sin(g)`` (the relative angular velocity m_a k - z_m lies along the
   pitch generatrix), the Gleason ratio of roll cos(dedendum angle)/sin(pitch angle).
+
+The universal machine (the settings sheet of a face-milling generator; Litvin & Fuentes 2004, sec. 20.3-20.5
+and ch. 21 for the tilted head-cutter; Fan, *J. Mech. Des.* 129 (2007) 31-37 for the motions as polynomials of
+the cradle roll) adds, each optional:
+
+* Modified roll to 6th order: ``phi = m_a (psi - C psi^2 - D psi^3 - E psi^4 - F psi^5 - G psi^6)`` (a sheet
+  gives 2C, 6D, 24E, 120F, 720G).
+* Radial, vertical and helical motions and modified tilt and swivel: the radial setting ``Sr``, the blank
+  offset ``Em``, the sliding base ``XB``, the tilt ``i`` and the swivel ``j`` are each
+  ``x(psi) = x0 + sum_k a_k psi^k / k!`` (``a_k`` the k-th derivative at psi = 0, Gleason's factorial scaling),
+  k = 1..6.
+* Tilt ``i`` and swivel ``j``: the cutter axis is turned by ``i`` about an axis in the cradle plane that makes
+  the angle ``q - j`` with x_p (the swivel measured from the radial direction of the cutter centre, back
+  towards x_p): cutter frame -> cradle ``R_t = Rz(q - j) Rx(i) Rz(j - q)`` about the cutter centre.  The
+  cutter is a surface of revolution, so the outer ``Rz(j - q)`` only shifts its angle theta.
+* Formate (non-generated) member: the cutter is plunged without roll; the flank is the cutter surface
+  itself in the work placed at psi = 0 (:attr:`MachineSettings.formate`).
 """
 from __future__ import annotations
 
@@ -26,8 +43,12 @@ import numpy as np
 from .blank import BevelBlank
 from .cutter import HeadCutter
 
-__all__ = ["MachineSettings", "FlankCut", "MemberCut", "rot_z", "translation", "cradle_to_machine",
-           "cutter_to_cradle", "work_to_machine", "roll", "gear_settings", "pinion_settings",
+MOTIONS = ("radial_motion", "vertical_motion", "helical_motion", "tilt_motion", "swivel_motion")
+"""Fields of :class:`MachineSettings` that hold the derivatives (orders 1..6) of a setting by the cradle roll."""
+MAX_ORDER = 6
+
+__all__ = ["MachineSettings", "MOTIONS", "FlankCut", "MemberCut", "rot_z", "translation", "cradle_to_machine",
+           "cutter_to_cradle", "work_to_machine", "roll", "tilt_rotation", "gear_settings", "pinion_settings",
            "conjugate_pinion_settings", "mean_pitch_point"]
 
 
@@ -51,8 +72,17 @@ class MachineSettings:
         XB, mm (shift along the cradle axis).
     ratio_of_roll : float
         m_a = d(phi)/d(psi) at psi = 0, > 0.
-    modified_roll_c, modified_roll_d : float
-        C (1/rad) and D (1/rad^2) of the modified roll.
+    modified_roll_c, modified_roll_d, modified_roll_e, modified_roll_f, modified_roll_g : float
+        C, D, E, F, G (1/rad, 1/rad^2, ... 1/rad^5) of the modified roll (module docstring).
+    tilt, swivel : float
+        Cutter tilt i and swivel j, rad (module docstring); |i| <= pi/4.
+    radial_motion, vertical_motion, helical_motion, tilt_motion, swivel_motion : tuple of float
+        Derivatives d^k/dpsi^k (k = 1, 2, ...; at most 6) at psi = 0 of the radial setting (mm), the blank
+        offset (mm), the sliding base (mm), the tilt and the swivel (rad): each setting is
+        ``x0 + sum_k a_k psi^k / k!``.  Empty: the setting is constant.
+    formate : bool
+        True: the member is not generated (no roll; the cutter is plunged); ``ratio_of_roll`` and the roll and
+        motion terms must then be zero.
     """
 
     radial_setting: float
@@ -64,14 +94,74 @@ class MachineSettings:
     ratio_of_roll: float = 1.0
     modified_roll_c: float = 0.0
     modified_roll_d: float = 0.0
+    modified_roll_e: float = 0.0
+    modified_roll_f: float = 0.0
+    modified_roll_g: float = 0.0
+    tilt: float = 0.0
+    swivel: float = 0.0
+    radial_motion: tuple[float, ...] = ()
+    vertical_motion: tuple[float, ...] = ()
+    helical_motion: tuple[float, ...] = ()
+    tilt_motion: tuple[float, ...] = ()
+    swivel_motion: tuple[float, ...] = ()
+    formate: bool = False
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.radial_setting) and self.radial_setting > 0):
             raise ValueError(f"radial_setting = {self.radial_setting!r} is outside the allowed range (0, inf) mm")
         if not (0.0 < self.root_angle <= 0.5 * np.pi + 1e-12):
             raise ValueError(f"root_angle = {self.root_angle!r} is outside the allowed range (0, pi/2] rad")
-        if not (np.isfinite(self.ratio_of_roll) and self.ratio_of_roll > 0):
+        if not self.formate and not (np.isfinite(self.ratio_of_roll) and self.ratio_of_roll > 0):
             raise ValueError(f"ratio_of_roll = {self.ratio_of_roll!r} is outside the allowed range (0, inf)")
+        if not (abs(self.tilt) <= 0.25 * np.pi) or not np.isfinite(self.swivel):
+            raise ValueError(f"tilt = {self.tilt!r} is outside the allowed range [-0.785, 0.785] rad (swivel = "
+                             f"{self.swivel!r} rad must be finite)")
+        for name in MOTIONS:
+            a = getattr(self, name)
+            if not isinstance(a, tuple):
+                object.__setattr__(self, name, tuple(float(x) for x in a))
+                a = getattr(self, name)
+            if len(a) > MAX_ORDER or not all(np.isfinite(a)):
+                raise ValueError(f"{name} = {a!r} is outside the allowed range: at most {MAX_ORDER} finite "
+                                 "derivatives")
+        rolls = (self.modified_roll_c, self.modified_roll_d, self.modified_roll_e, self.modified_roll_f,
+                 self.modified_roll_g)
+        if self.formate and (any(rolls) or self.ratio_of_roll or any(any(getattr(self, n)) for n in MOTIONS)):
+            raise ValueError("formate = True with a modified roll or a motion: a formate member has no roll; "
+                             "allowed: all roll and motion terms 0")
+        object.__setattr__(self, "_basic", not (
+            self.tilt or self.swivel or self.formate or self.modified_roll_e or self.modified_roll_f
+            or self.modified_roll_g or any(getattr(self, n) for n in MOTIONS)))
+
+    @property
+    def roll_coefficients(self) -> np.ndarray:
+        """Coefficients c_1..c_6 of ``phi = sum_k c_k psi^k`` (c_1 = m_a, c_2 = -m_a C, ...), shape (6,)."""
+        m = 0.0 if self.formate else self.ratio_of_roll
+        return m * np.array([1.0, -self.modified_roll_c, -self.modified_roll_d, -self.modified_roll_e,
+                             -self.modified_roll_f, -self.modified_roll_g])
+
+    @property
+    def is_basic(self) -> bool:
+        """True for the basic cradle machine: no tilt, swivel, motions, roll terms above D, not formate."""
+        return self._basic
+
+    def motion(self, name: str, psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """A setting at the cradle roll ``psi`` and its derivative by psi.
+
+        Parameters
+        ----------
+        name : str
+            ``"radial_setting"``, ``"blank_offset"``, ``"sliding_base"``, ``"tilt"`` or ``"swivel"``.
+        psi : ndarray
+            Cradle roll, rad.
+
+        Returns
+        -------
+        x, dx : ndarray shaped like ``psi`` (mm or rad, per rad).
+        """
+        motion = {"radial_setting": "radial_motion", "blank_offset": "vertical_motion",
+                  "sliding_base": "helical_motion", "tilt": "tilt_motion", "swivel": "swivel_motion"}[name]
+        return _taylor(getattr(self, name), getattr(self, motion), psi)
 
     @property
     def cutter_center(self) -> np.ndarray:
@@ -145,8 +235,13 @@ def cradle_to_machine(psi: float) -> np.ndarray:
 
 
 def cutter_to_cradle(ms: MachineSettings) -> np.ndarray:
-    """M_pc: cutter frame -> cradle frame (cutter centre at Sr(cos q, sin q, 0))."""
-    return translation(ms.cutter_center)
+    """M_pc at psi = 0: cutter frame -> cradle frame (cutter centre at Sr(cos q, sin q, 0), tilted by R_t)."""
+    m = translation(ms.cutter_center)
+    if ms.tilt:
+        b, i = ms.cradle_angle - ms.swivel, ms.tilt
+        m[:3, :3] = rot_z(b)[:3, :3] @ np.array([[1.0, 0.0, 0.0], [0.0, np.cos(i), -np.sin(i)],
+                                                  [0.0, np.sin(i), np.cos(i)]]) @ rot_z(-b)[:3, :3]
+    return m
 
 
 def work_to_machine(ms: MachineSettings, phi: float) -> np.ndarray:
@@ -157,10 +252,50 @@ def work_to_machine(ms: MachineSettings, phi: float) -> np.ndarray:
     return m @ rot_z(phi)
 
 
+def _taylor(x0: float, derivs: tuple[float, ...], psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``x0 + sum_k a_k psi^k / k!`` and its derivative by psi, arrays shaped like ``psi``."""
+    psi = np.asarray(psi, dtype=float)
+    x, dx = np.full_like(psi, x0), np.zeros_like(psi)
+    for k, a in enumerate(derivs, start=1):
+        x = x + a * psi ** k / _FACT[k]
+        dx = dx + a * psi ** (k - 1) / _FACT[k - 1]
+    return x, dx
+
+
+_FACT = [1.0, 1.0, 2.0, 6.0, 24.0, 120.0, 720.0]
+
+
 def roll(ms: MachineSettings, psi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Work roll angle phi(psi) and its derivative d(phi)/d(psi) (modified roll, Cao et al. 2008 Eq. 8)."""
+    """Work roll angle phi(psi) and its derivative d(phi)/d(psi) (modified roll, Cao et al. 2008 Eq. 8, to
+    6th order; zero for a formate member)."""
     c, d, m = ms.modified_roll_c, ms.modified_roll_d, ms.ratio_of_roll
-    return m * (psi - c * psi ** 2 - d * psi ** 3), m * (1.0 - 2 * c * psi - 3 * d * psi ** 2)
+    if not (ms.formate or ms.modified_roll_e or ms.modified_roll_f or ms.modified_roll_g):
+        return m * (psi - c * psi ** 2 - d * psi ** 3), m * (1.0 - 2 * c * psi - 3 * d * psi ** 2)
+    psi = np.asarray(psi, dtype=float)
+    cf = ms.roll_coefficients
+    phi, dphi = np.zeros_like(psi), np.zeros_like(psi)
+    for k in range(6, 0, -1):
+        phi = (phi + cf[k - 1]) * psi
+        dphi = dphi * psi + k * cf[k - 1]
+    return phi, dphi
+
+
+def tilt_rotation(ms: MachineSettings, tilt: np.ndarray, swivel: np.ndarray) -> tuple[np.ndarray, np.ndarray,
+                                                                                       np.ndarray]:
+    """Tilt axis and its in-plane normal at the given tilt and swivel (module docstring), for Rodrigues' formula.
+
+    Returns
+    -------
+    a, a_perp : ndarray, shape tilt.shape + (3,)
+        Unit tilt axis (cos(q - j), sin(q - j), 0) in the cradle frame and d a / d(q - j).
+    i : ndarray
+        The tilt, broadcast.
+    """
+    b = ms.cradle_angle - np.asarray(swivel, dtype=float)
+    cb, sb = np.cos(b), np.sin(b)
+    zero = np.zeros_like(cb)
+    return (np.stack([cb, sb, zero], axis=-1), np.stack([-sb, cb, zero], axis=-1),
+            np.broadcast_to(np.asarray(tilt, dtype=float), cb.shape))
 
 
 def mean_pitch_point(blank: BevelBlank, member: str, root_angle: float, sliding_base: float = 0.0

@@ -104,6 +104,10 @@ def _cutter_tensor(cutter: HeadCutter, u: float, ang: float) -> np.ndarray:
 def _generated_machine(fc: FlankCut, u: float, theta: float, psi: float) -> tuple[np.ndarray, float]:
     """Curvature tensor of the generated work surface in the machine frame, and the roll angle."""
     ms = fc.machine
+    if not ms.is_basic or fc.cutter.general:
+        raise ValueError("generated_curvature: the second-order relations here are those of the basic cradle "
+                         "with a straight blade; allowed: no tilt, swivel, motions or roll terms above D, not "
+                         "formate, a straight blade without toprem or flankrem")
     st = surface_state(fc, np.array([u]), np.array([theta]), np.array([psi]), with_work=False)
     phi, dphi = roll(ms, np.array(psi))
     ddphi = ms.ratio_of_roll * (-2.0 * ms.modified_roll_c - 6.0 * ms.modified_roll_d * psi)

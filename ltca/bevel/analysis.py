@@ -27,8 +27,11 @@ FLANK = {"concave": "working", "convex": "coast"}
 
 
 def build_pair(case: BevelCase) -> BevelPair:
-    """The gear (standard cut) and the pinion synthesised for the case's targets."""
+    """The gear (standard cut) and the pinion synthesised for the case's targets, or the pair cut as the case's
+    settings sheets give it."""
     bl = design_blank(case.basic)
+    if case.cuts:
+        return BevelPair(bl, case.cuts["gear"], case.cuts["pinion"])
     gear = standard_gear_cut(bl)
     pin, _ = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
     return BevelPair(bl, gear, pin)

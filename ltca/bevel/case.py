@@ -1,5 +1,8 @@
 """Spiral bevel case: read and validate a TOML case with a [bevel] table (basic data, flank targets, blank offset).
 
+Instead of the targets a case may give each member's settings sheet per flank, ``[bevel.settings.gear.concave]``
+and so on (keys of :mod:`geometry.bevel.sheet`): the pair is then cut as given, with no synthesis.
+
 Case units: mm, deg, arcsec; converted once here to mm and rad.  Mistakes raise
 :class:`ltca.errors.CaseError` naming the field.
 """
@@ -11,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from geometry.bevel.blank import BevelBasicData, design_blank
+from geometry.bevel.sheet import member_from_sheet
 from geometry.bevel.synthesis import FlankTarget
 from geometry.bevel.tca import RAD_PER_ARCSEC
 
@@ -27,6 +31,43 @@ _FLANK = Table({
     "te_magnitude_arcsec": Num(1, 200, "arcsec", required=True, meaning="parabolic TE amplitude over a cycle"),
     "ellipse_major_mm": Num(0.5, 50, "mm", required=True, meaning="contact-ellipse major axis at the mean point"),
 }, required=True, meaning="synthesis target of the flank")
+_DERIVS = List(Num(-1e6, 1e6), 1, 6)
+
+
+def _flank_sheet(blade: str) -> Table:
+    """One flank's settings sheet (geometry.bevel.sheet); ranges are those the generator is built for."""
+    return Table({
+        "generation": Str(("generated", "formate"), default="generated"),
+        "blade": Str((blade,), default=blade),
+        "radial_setting_mm": Num(0, 1e4, "mm", required=True, lo_open=True),
+        "cradle_angle_deg": Num(-360, 360, "deg", required=True),
+        "machine_root_angle_deg": Num(0, 90, "deg", required=True, lo_open=True),
+        "machine_center_to_back_mm": Num(-1e3, 1e3, "mm", default=0.0),
+        "blank_offset_mm": Num(-1e3, 1e3, "mm", default=0.0),
+        "sliding_base_mm": Num(-1e3, 1e3, "mm", default=0.0),
+        "tilt_deg": Num(-45, 45, "deg", default=0.0),
+        "swivel_deg": Num(-360, 360, "deg", default=0.0),
+        "ratio_of_roll": Num(0, 100, "", default=None, lo_open=True, note="required for a generated flank"),
+        "modified_roll_2C": Num(-1e3, 1e3, "", default=0.0),
+        "modified_roll_6D": Num(-1e4, 1e4, "", default=0.0),
+        "modified_roll_24E": Num(-1e5, 1e5, "", default=0.0),
+        "modified_roll_120F": Num(-1e6, 1e6, "", default=0.0),
+        "modified_roll_720G": Num(-1e7, 1e7, "", default=0.0),
+        "radial_motion_mm": _DERIVS, "vertical_motion_mm": _DERIVS, "helical_motion_mm": _DERIVS,
+        "tilt_motion_deg": _DERIVS, "swivel_motion_deg": _DERIVS,
+        "point_radius_mm": Num(0, 1e4, "mm", required=True, lo_open=True),
+        "blade_angle_deg": Num(0, 45, "deg", required=True),
+        "edge_radius_mm": Num(0, 100, "mm", default=0.0),
+        "profile_radius_mm": Num(0, 1e7, "mm", default=None, lo_open=True, note="curved blade; absent: straight"),
+        "toprem_depth_mm": Num(0, 1e3, "mm", default=None, lo_open=True, note="blended toprem from this depth"),
+        "toprem_radius_mm": Num(0, 1e7, "mm", default=None, lo_open=True),
+        "flankrem_depth_mm": Num(0, 1e3, "mm", default=None, lo_open=True, note="blended flankrem from this depth"),
+        "flankrem_radius_mm": Num(0, 1e7, "mm", default=None, lo_open=True),
+    }, required=True)
+
+
+_MEMBER_SHEET = Table({"concave": _flank_sheet("outside"), "convex": _flank_sheet("inside")}, required=True)
+_SETTINGS = Table({"gear": _MEMBER_SHEET, "pinion": _MEMBER_SHEET}, default={}, required=False)
 _BEVEL = Table({
     "pinion_teeth": Int(6, 100, required=True, meaning="pinion teeth z1"),
     "gear_teeth": Int(6, 300, required=True, note=">= pinion_teeth", meaning="gear teeth z2"),
@@ -40,8 +81,11 @@ _BEVEL = Table({
     "cutter_radius_mm": Num(5, 1000, "mm", required=True, meaning="mean cutter radius of the face-milling head"),
     "taper": Str(("standard", "uniform"), default="standard", meaning="tooth depth taper"),
     "blank_offset_mm": Num(-10, 10, "mm", default=None, meaning="pinion blank offset of the redesign (default: none)"),
-    "working": _FLANK,
-    "coast": _FLANK,
+    "working": Table(_FLANK.fields, default={}, required=False,
+                     meaning="synthesis target of the working flank (or give [bevel.settings])"),
+    "coast": Table(_FLANK.fields, default={}, required=False,
+                   meaning="synthesis target of the coast flank (or give [bevel.settings])"),
+    "settings": _SETTINGS,
 }, required=True)
 _TORQUE = Num(-1e5, 1e5, "N m", note="not 0")
 _ASSEMBLY = Table({
@@ -82,7 +126,8 @@ _CASE = Table({"bevel": _BEVEL,
 class BevelCase:
     """A validated spiral bevel case (mm, rad, MPa; torques in N m on the pinion, the sign picks the flank).
 
-    ``targets`` maps the pinion side ("concave": working, "convex": coast) to its synthesis target;
+    ``targets`` maps the pinion side ("concave": working, "convex": coast) to its synthesis target; ``cuts``
+    ({"gear", "pinion"} -> MemberCut) holds the pair as its settings sheets cut it, when the case gives them;
     ``assembly`` holds the errors E, P, G (mm) and d_sigma (rad) as keyword arguments of
     :class:`geometry.bevel.tca.Assembly`."""
     name: str
@@ -96,6 +141,7 @@ class BevelCase:
     positions: int
     fidelity: str
     mounting: BevelMounting
+    cuts: dict | None = None
 
 
 def load_bevel_case(case_path: str | Path) -> BevelCase:
@@ -116,8 +162,15 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
     b = c["bevel"]
     if b["gear_teeth"] < b["pinion_teeth"]:
         raise CaseError("bevel.gear_teeth", b["gear_teeth"], f"at least pinion_teeth = {b['pinion_teeth']}", f)
+    raw_b = data.get("bevel") if isinstance(data.get("bevel"), dict) else {}
+    given = "settings" in raw_b
     targets = {}
     for name, side in (("working", "concave"), ("coast", "convex")):
+        if name not in raw_b:
+            if given:
+                continue
+            raise CaseError(f"bevel.{name}", None, "required (or give the settings sheets [bevel.settings.gear.*] "
+                            "and [bevel.settings.pinion.*]); a table", f)
         t = b[name]
         targets[side] = FlankTarget(np.deg2rad(t["path_angle_deg"]), t["te_magnitude_arcsec"] * RAD_PER_ARCSEC,
                                     float(t["ellipse_major_mm"]))
@@ -133,16 +186,36 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
         raise DesignError(f"bevel blank: {exc}", ("bevel.face_width_mm", "bevel.module_mm", "bevel.pinion_teeth",
                                                   "bevel.gear_teeth", "bevel.cutter_radius_mm"), file=f) from None
     mounting = _mounting(c.get("mounting") or {}, blank, f)
+    cuts = _cuts(b["settings"], basic, f) if given else None
     name = c["case"]["name"] or stem
     asm = c.get("assembly") or {}
     mat = c.get("material") or {}
     an = c.get("analysis") or {}
     return BevelCase(name=name, basic=basic, targets=targets, blank_offset=b.get("blank_offset_mm"), torques=torques,
-                assembly=dict(E=float(asm.get("E_mm", 0.0)), P=float(asm.get("P_mm", 0.0)),
+                     cuts=cuts,
+                     assembly=dict(E=float(asm.get("E_mm", 0.0)), P=float(asm.get("P_mm", 0.0)),
                               G=float(asm.get("G_mm", 0.0)), d_sigma=float(np.deg2rad(asm.get("sigma_deg", 0.0)))),
                 young=float(mat.get("youngs_modulus_mpa", 206000.0)), poisson=float(mat.get("poisson_ratio", 0.3)),
                 positions=int(an.get("positions", 21)), fidelity=str(an.get("fidelity", "default")),
                 mounting=mounting)
+
+
+def _cuts(sheets: dict, basic: BevelBasicData, f: str | None) -> dict:
+    """``[bevel.settings]``: each member's cut from its settings sheets (``{"gear": MemberCut, "pinion": ...}``)."""
+    out = {}
+    for member, z in (("gear", basic.z2), ("pinion", basic.z1)):
+        for side in ("concave", "convex"):
+            sh = sheets[member][side]
+            if sh["generation"] == "generated" and sh["ratio_of_roll"] is None:
+                raise CaseError(f"bevel.settings.{member}.{side}.ratio_of_roll", None,
+                                "required for a generated flank; a number in (0, 100]", f)
+        clean = {side: {k: v for k, v in sheets[member][side].items() if v is not None}
+                 for side in ("concave", "convex")}
+        try:
+            out[member] = member_from_sheet(clean, member, z)
+        except ValueError as exc:
+            raise CaseError(f"bevel.settings.{member}", "sheet", str(exc), f) from None
+    return out
 
 
 def _mounting(m: dict, blank, f: str | None) -> BevelMounting:

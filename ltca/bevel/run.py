@@ -13,6 +13,7 @@ from geometry.bevel.generation import standard_gear_cut
 from geometry.bevel.machine import MemberCut
 from geometry.bevel.generation import generate_member, surface_state
 from geometry.bevel.separation import separation_tca
+from geometry.bevel.sheet import member_sheet, sheet_toml
 from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, tca, to_pitch_coords
 from geometry.bevel.undercut import undercut_check
 
@@ -22,7 +23,7 @@ from geometry.bevel.tca import ContactError
 from ..validation import DesignError
 from .case import load_bevel_case
 
-__all__ = ["run_bevel_tca", "plot_bevel", "bevel_benchmark"]
+__all__ = ["run_bevel_tca", "plot_bevel", "bevel_benchmark", "settings_sheet_toml"]
 
 
 def _settings(cut: MemberCut) -> dict:
@@ -37,6 +38,14 @@ def _settings(cut: MemberCut) -> dict:
                          sliding_base_mm=m.sliding_base, ratio_of_roll=m.ratio_of_roll,
                          modified_roll_C=m.modified_roll_c, modified_roll_D=m.modified_roll_d)
     return {s: {k: (float(v) if not isinstance(v, str) else v) for k, v in d.items()} for s, d in out.items()}
+
+
+def settings_sheet_toml(pair: BevelPair) -> str:
+    """The pair's complete settings sheets as ``[bevel.settings.<member>.<flank>]`` TOML tables: with the case's
+    basic data (and no targets) they read back as a case that cuts the same pair."""
+    return ("# settings sheets of both members (geometry.bevel.sheet): put under the case's [bevel] table, with\n"
+            "# [bevel.working] and [bevel.coast] removed, to cut this pair as given\n"
+            + sheet_toml({"gear": member_sheet(pair.gear), "pinion": member_sheet(pair.pinion)}))
 
 
 def _print_summary(name: str, settings: dict, flanks: dict) -> None:
@@ -75,7 +84,7 @@ def run_bevel_tca(case_path: str, out: str | None = None) -> dict:
     except (ContactError, MeshingError, ValueError) as exc:
         # the user's design (targets, blank, cutter) has no solution in the cradle model: exit 2 naming the inputs
         side = "working" if "concave" in str(exc) else "coast" if "convex" in str(exc) else "working/coast"
-        asm = case.get("assembly") or {}
+        asm = case.assembly or {}
         mounted = [f"assembly.{key}" for name, key in (("E", "E_mm"), ("P", "P_mm"), ("G", "G_mm"),
                                                        ("d_sigma", "sigma_deg")) if asm.get(name, 0.0) != 0.0]
         raise DesignError(f"spiral bevel synthesis/TCA failed ({type(exc).__name__}: {str(exc)[:160]})",
@@ -85,10 +94,13 @@ def run_bevel_tca(case_path: str, out: str | None = None) -> dict:
                           "move the targets towards the shipped case's values", file=str(case_path)) from None
 
 
-def _run_bevel_tca(case: dict, out: str | None) -> dict:
+def _run_bevel_tca(case, out: str | None) -> dict:
     bl = design_blank(case.basic)
-    gear = standard_gear_cut(bl)
-    pin, infos = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
+    if case.cuts:
+        gear, pin, infos = case.cuts["gear"], case.cuts["pinion"], None
+    else:
+        gear = standard_gear_cut(bl)
+        pin, infos = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
     pair = BevelPair(bl, gear, pin)
     asm = Assembly(**case.assembly)          # [assembly] E, P, G, sigma: the TCA of the pair as mounted
     flanks, design, runs = {}, {}, {}
@@ -97,16 +109,18 @@ def _run_bevel_tca(case: dict, out: str | None) -> dict:
         sep = separation_tca(pair, side, asm, steps_per_cycle=16, cycles=3.0)
         runs[label] = (r, sep)
         m = cycle_metrics(r, bl)
-        tg = case.targets[side]
-        m["targets"] = dict(path_angle_deg=float(np.rad2deg(tg.eta2)), te_magnitude_arcsec=tg.te_magnitude / RAD_PER_ARCSEC,
-                            ellipse_major_mm=tg.major_axis)
+        tg = case.targets.get(side)
+        if tg is not None:
+            m["targets"] = dict(path_angle_deg=float(np.rad2deg(tg.eta2)),
+                                te_magnitude_arcsec=tg.te_magnitude / RAD_PER_ARCSEC, ellipse_major_mm=tg.major_axis)
         m["separation_te_range_arcsec"] = float(np.ptp(sep.te_arcsec))
         m["separation_vs_continuous_te_arcsec"] = float(np.max(np.abs(sep.te - np.interp(sep.phi1, r.phi1_3,
                                                                                           r.te_3))) / RAD_PER_ARCSEC)
         m["ease_off_max_um"] = float(np.nanmax(sep.ease_off) * 1e3)
         flanks[label] = m
-        d = infos[side]["design"]
-        design[label] = dict(blank_offset_mm=d["blank_offset"], C=d["C"], D=d["D"], metrics=d["metrics"])
+        if infos is not None:
+            d = infos[side]["design"]
+            design[label] = dict(blank_offset_mm=d["blank_offset"], C=d["C"], D=d["D"], metrics=d["metrics"])
     settings = dict(gear=_settings(gear), pinion=_settings(pin))
     undercut = {m: {s: undercut_check(c.flank(s), bl, m).message for s in ("concave", "convex")}
                 for m, c in (("gear", gear), ("pinion", pin))}
@@ -119,6 +133,7 @@ def _run_bevel_tca(case: dict, out: str | None) -> dict:
         summary["plots"] = plot_bevel(pair, runs, d, case.name)
         from ..outputs import write_json_atomic
         write_json_atomic(d / "summary.json", summary)
+        (d / "settings_sheet.toml").write_text(settings_sheet_toml(pair))
     return summary
 
 

@@ -72,6 +72,9 @@ class BevelBackend:
         base = copy.deepcopy({k: v for k, v in data.items() if k != "design"})
         self.case = bevel_case_from_data(base, file, Path(file).stem if file else "bevel")
         case = self.case
+        if case.cuts:
+            raise CaseError("bevel.settings", "settings sheets", "design varies the synthesis targets: give "
+                            "[bevel.working] and [bevel.coast] instead of [bevel.settings]", file)
         self.torques_nm = tuple(case.torques)
         self.sides = sorted({"concave" if t > 0 else "convex" for t in self.torques_nm})
         for v in spec.variables:
