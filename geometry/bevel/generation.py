@@ -24,13 +24,13 @@ plane, from just above the root cone (into the fillet) up to the face cone.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 import numpy as np
 
 from ..flank import Flank, surface_curvatures
 from .blank import BevelBlank
 from .machine import FlankCut, MemberCut, cutter_to_cradle, gear_settings, roll
+from .surface_state import SurfaceState, _cross, _ez_cross, _rotz, _vectors
 
 __all__ = ["MeshingError", "SurfaceState", "surface_state", "solve_axial_points", "generate_flank",
            "generate_member", "normal_thickness", "standard_gear_cut", "axial_grid"]
@@ -38,52 +38,6 @@ __all__ = ["MeshingError", "SurfaceState", "surface_state", "solve_axial_points"
 
 class MeshingError(RuntimeError):
     """The equation of meshing has no (converged) solution for some grid region."""
-
-
-@dataclass(frozen=True)
-class SurfaceState:
-    """Generated-surface quantities at parameters (u, theta, psi); arrays shaped like the inputs.
-
-    r_w, n_w : (..., 3) point and unit normal (out of the work) in the work body frame;
-    f : (...) equation of meshing, mm;  Z, rho : axial-section coordinates of the point, mm;
-    r_m, n_m : (..., 3) the same point and normal in the machine frame at the generating instant;
-    phi : (...) work roll angle.
-    """
-
-    r_w: np.ndarray
-    n_w: np.ndarray
-    f: np.ndarray
-    Z: np.ndarray
-    rho: np.ndarray
-    r_m: np.ndarray
-    n_m: np.ndarray
-    phi: np.ndarray
-
-
-def _vectors(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
-    """(..., 3) vectors of broadcast components (np.stack without its per-call overhead; the same values)."""
-    x, y, z = np.broadcast_arrays(x, y, z)
-    out = np.empty(x.shape + (3,), np.result_type(x, y, z))
-    out[..., 0], out[..., 1], out[..., 2] = x, y, z
-    return out
-
-
-def _rotz(vec: np.ndarray, ang: np.ndarray) -> np.ndarray:
-    c, s = np.cos(ang), np.sin(ang)
-    x, y = vec[..., 0], vec[..., 1]
-    return _vectors(c * x - s * y, s * x + c * y, vec[..., 2])
-
-
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b of a (3,) vector and (..., 3) vectors: np.cross's arithmetic (the same products and differences,
-    so the same bits) without its axis handling, which cost a third of a bevel LTCA cycle."""
-    x, y, z = b[..., 0], b[..., 1], b[..., 2]
-    return _vectors(a[1] * z - a[2] * y, a[2] * x - a[0] * z, a[0] * y - a[1] * x)
-
-
-def _ez_cross(b: np.ndarray) -> np.ndarray:
-    """e_z x b of (..., 3) vectors, as :func:`_cross` (e_z = (0, 0, 1))."""
-    return _cross(np.array([0.0, 0.0, 1.0]), b)
 
 
 def surface_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarray,

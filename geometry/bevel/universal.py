@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .generation import SurfaceState, _cross, _ez_cross, _rotz, _vectors
+from .surface_state import SurfaceState, _cross, _ez_cross, _rotz, _vectors
 from .machine import FlankCut, roll, tilt_rotation
 
 __all__ = ["universal_state", "blade_coordinates"]

@@ -1,0 +1,56 @@
+"""The state of a generated flank point (position, normal, the equation of meshing and its derivatives) and the
+small vector helpers that the cradle generators (:mod:`geometry.bevel.generation`, the universal machine
+:mod:`geometry.bevel.universal`) share. Points and vectors are (..., 3) arrays, mm."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["SurfaceState"]
+
+
+@dataclass(frozen=True)
+class SurfaceState:
+    """Generated-surface quantities at parameters (u, theta, psi); arrays shaped like the inputs.
+
+    r_w, n_w : (..., 3) point and unit normal (out of the work) in the work body frame;
+    f : (...) equation of meshing, mm;  Z, rho : axial-section coordinates of the point, mm;
+    r_m, n_m : (..., 3) the same point and normal in the machine frame at the generating instant;
+    phi : (...) work roll angle.
+    """
+
+    r_w: np.ndarray
+    n_w: np.ndarray
+    f: np.ndarray
+    Z: np.ndarray
+    rho: np.ndarray
+    r_m: np.ndarray
+    n_m: np.ndarray
+    phi: np.ndarray
+
+
+def _vectors(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """(..., 3) vectors of broadcast components (np.stack without its per-call overhead; the same values)."""
+    x, y, z = np.broadcast_arrays(x, y, z)
+    out = np.empty(x.shape + (3,), np.result_type(x, y, z))
+    out[..., 0], out[..., 1], out[..., 2] = x, y, z
+    return out
+
+
+def _rotz(vec: np.ndarray, ang: np.ndarray) -> np.ndarray:
+    c, s = np.cos(ang), np.sin(ang)
+    x, y = vec[..., 0], vec[..., 1]
+    return _vectors(c * x - s * y, s * x + c * y, vec[..., 2])
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b of a (3,) vector and (..., 3) vectors: np.cross's arithmetic (the same products and differences,
+    so the same bits) without its axis handling, which cost a third of a bevel LTCA cycle."""
+    x, y, z = b[..., 0], b[..., 1], b[..., 2]
+    return _vectors(a[1] * z - a[2] * y, a[2] * x - a[0] * z, a[0] * y - a[1] * x)
+
+
+def _ez_cross(b: np.ndarray) -> np.ndarray:
+    """e_z x b of (..., 3) vectors, as :func:`_cross` (e_z = (0, 0, 1))."""
+    return _cross(np.array([0.0, 0.0, 1.0]), b)
