@@ -33,7 +33,7 @@ every torque. A variant's id hashes everything that defines its results except t
 resolved case and the largest torque, which sets the teeth in mesh), so a rerun finds what is done.
 A bad study file raises :class:`ltca.errors.CaseError` naming the field (exit status 2).
 
-Imports ltca.case, ltca.cases, ltca.errors and ltca.study.montecarlo.
+Imports ltca.case, ltca.bevel.case, ltca.errors and ltca.study.montecarlo.
 """
 from __future__ import annotations
 
@@ -106,6 +106,18 @@ def study_keys(kind: str) -> dict[str, str]:
                 out[f"{prefix}{name}"] = getattr(f, "note", "") or ""
     walk(_CASE, "")
     return {k: v for k, v in out.items() if not k.startswith("case.")}
+
+
+def _kind(data: dict) -> str:
+    """The gear kind of a case given as TOML tables, by its tables (as :data:`ltca.cases.KINDS` tells them)."""
+    if "bevel" in data:
+        return "bevel"
+    other = {"satellite": "planetary", "study": "study", "budget": "budget", "member": "budget", "chain": "chain",
+             "workpiece": "chain"}
+    for table, kind in other.items():
+        if table in data:
+            return kind
+    return "cylindrical"
 
 
 def validate_case(kind: str, data: dict, file: str | None = None):
@@ -209,8 +221,7 @@ class Study:
         if not case_path.is_file():
             raise CaseError("study.case", st["case"], f"an existing case file (looked for {case_path})", file)
         base = read_toml(case_path)
-        from ..cases import kind_of
-        kind = kind_of(base, str(case_path))
+        kind = _kind(base)
         if kind not in STUDY_KINDS:
             raise CaseError("study.case", st["case"], f"a gear pair case of kind {' or '.join(STUDY_KINDS)} "
                             f"(this is a {kind} case)", file)

@@ -18,7 +18,7 @@ assembly error and torque of that flank); the three functions here hand a bevel 
 runner is the same for every kind: a kind supplies "plan a variant" (with its compliance key per torque),
 "compute a shared compliance" and "solve one point".
 
-Imports ltca.case, ltca.cases, ltca.cylindrical and fem.
+Imports ltca.case, ltca.cylindrical and fem.
 """
 from __future__ import annotations
 
@@ -104,8 +104,7 @@ def plan_variant(case_dict: dict) -> VariantPlan:
     case_dict : dict
         The variant's resolved case, as read from TOML.
     """
-    from ..cases import kind_of
-    if kind_of(case_dict) == "bevel":
+    if "bevel" in case_dict:
         from . import bevel_tasks
         return bevel_tasks.plan_variant(case_dict)
     t0 = time.perf_counter()
