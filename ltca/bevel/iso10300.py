@@ -3,12 +3,11 @@
 stress sigma_F0 (ISO 10300-3 Method B1), every load factor K = 1: the figures the LTCA is set beside.
 
 Source. The standard's text was not available to the project. The formulas below are those of ISO 10300-1, -2
-and -3 (2014 editions, renumbered unchanged in 2023) as stated, formula by formula with their clause and
-formula numbers, by a public C# implementation of ISO 10300:2023 Method B1 (namespace ``ISO10300Calc``, found
-by the project's code search; it checks itself against the worked example ISO/TR 10300-30, sample 1), and the
-tooth-form factors are ISO 6336-3 Method B's (its formulas (3) to (14)) on the virtual gear in the normal
-section, which ISO 10300-3 6.4.1.2 takes over. Clause and formula numbers are those the implementation gives;
-they were not checked against the standard's text.
+and -3:2023 as stated, formula by formula with their clause and formula numbers, by a public C# implementation
+of ISO 10300:2023 Method B1 (namespace ``ISO10300Calc``, found by the project's code search; it checks itself
+against the worked example of ISO/TR 10300-30, sample 1); its tooth form is ISO 6336-3 Method B's on the
+virtual gear in the normal section (checked here against the ISO 6336-3 charts of Y_Fa and Y_Sa). Clause and
+formula numbers are those the implementation gives; they were not checked against the standard's text.
 
 What is not sourced, and how it is handled:
 
@@ -19,8 +18,9 @@ What is not sourced, and how it is handled:
 - the clipping of a contact line at the edges of the zone of action (ISO 10300-1 Table A.3 conditions): here the
   geometric definition, the part of the line inside the rectangle b_eff x g_va;
 - the contact ratio factor Y_eps for 0 < eps_vbeta < 1 (the sources give the end points only): refused;
-- Z_H, Z_beta and Z_K of the 2001 edition do not appear in the 2014 Method B1: the zone and helix factors are in
-  rho_rel and l_bm, and the bevel gear factor became Z_KP of the permissible stress (not applied here).
+- Z_H, Z_beta and Z_K, named in older descriptions of ISO 10300-2, are not factors of the sigma_H0 formula
+  followed here: zone and helix enter through rho_rel and l_bm, and the bevel gear factor is Z_KP of the
+  permissible stress (not computed here).
 
 Units: mm, N, MPa, rad. Subscript 1 pinion, 2 gear. Shaft angle 90 deg and no offset.
 """
@@ -326,7 +326,7 @@ class Iso10300B1:
 
 
 def iso10300_b1(blank, torque_nm: float, young: float = 206000.0, poisson: float = 0.3,
-                rho_a0: tuple[float, float] = (None, None), b_eff: float | None = None,
+                rho_a0: tuple[float | None, float | None] = (None, None), b_eff: float | None = None,
                 e_ls: float = 1.5) -> Iso10300B1:
     """ISO 10300 Method B1 nominal contact and root stresses of a bevel pair at the pinion torque |torque_nm|.
 
