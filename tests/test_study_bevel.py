@@ -137,11 +137,12 @@ def test_bevel_study_point_equals_a_standalone_run(bevel_sweep):
     """One variant at one torque through ``ltca.run`` (its own synthesis and compliance) equals the study's point
     to 1e-9."""
     import ltca
+    from ltca.cases import case_from_data
     from ltca.study.store import StudyStore
     study, out, _, _ = bevel_sweep
     v = study.expand()[2]
     t = study.torques[1]
-    case = ltca.cases.case_from_data(v.case, CASE)
+    case = case_from_data(v.case, CASE)
     alone = ltca.run(case, torques_nm=[t]).dataset.isel(torque=0)
     with xr.open_dataset(StudyStore(out).point_path(v.id, t), engine="h5netcdf") as pt:
         pt = pt.load()
