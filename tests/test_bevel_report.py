@@ -35,7 +35,7 @@ def test_bevel_report_is_self_contained_with_iso10300(bevel_run):
     html = (out / "report.html").read_text(encoding="utf-8")
     srcs = re.findall(r'src="([^"]*)"', html)
     assert len(srcs) == len(PLOT_IDS) and all(s.startswith("data:image/png;base64,") for s in srcs)
-    assert "<script" not in html and "http://" not in html and "https://" not in html and "<link rel=\"style" not in html
+    assert "<script" not in html and "http://" not in html and "https://" not in html and "<link rel=\"st" not in html
     for pid in PLOT_IDS:
         assert f'id="plot-{pid}"' in html
     for text in ("ISO 10300 Method B1", "sigma_H0", "sigma_F0", "Z_M-B", "Z_LS", "Y_BS", "Y_Fa", "b_eff = 0.85 b",

@@ -80,7 +80,7 @@ def _factor_table(iso: Iso10300B1) -> list[tuple[str, str]]:
             ("stress correction factors Y_Sa1 / Y_Sa2", f"{p.Y_Sa:.4f} / {g.Y_Sa:.4f}"),
             ("contact ratio factor Y_eps", f"{iso.Y_eps:.4f}"), ("bevel spiral angle factor Y_BS", f"{iso.Y_BS:.4f}"),
             ("load sharing factor Y_LS = Z_LS^2", f"{iso.Y_LS:.4f}"),
-            ("profile shift / thickness coefficients x_hm1 / x_sm1", f"{p.x_hm:.4f} / {p.x_sm:.4f}")]
+            ("profile shift / thickness coefficients x_hm1 / x_sm1", f"{p.x_hm:.4f} / {round(p.x_sm, 9) + 0.0:.4f}")]
 
 
 def _plots(folder: Path) -> list[dict]:

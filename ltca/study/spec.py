@@ -25,12 +25,13 @@ A study TOML (paths relative to the study file)::
     [monte_carlo.uniform]                 # and / or any case keys drawn: uniform in [low, high] ...
     "assembly.lead_misalignment_um" = [-5.0, 5.0]
     [monte_carlo.normal]                  # ... or normal (mean, standard deviation)
-    "assembly.center_distance_error_um" = [0.0, 5.0]
+    "assembly.lead_deviation_um" = [0.0, 3.0]
 
 The base case is a cylindrical or a bevel pair (``[bevel]``; then ``grade`` and ``members`` do not apply and
-the torques may be negative: the coast flank). Variants are the product of the named variants, the grid points and the Monte Carlo samples; each runs at
-every torque. A variant's id hashes everything that defines its results except the torque list (its
-resolved case and the largest torque, which sets the teeth in mesh), so a rerun finds what is done.
+the torques may be negative: the coast flank). Variants are the product of the named variants, the grid points
+and the Monte Carlo samples; each runs at every torque. A variant's id hashes everything that defines its
+results except the torque list (its resolved case and the largest torque, which sets the teeth in mesh), so a
+rerun finds what is done.
 A bad study file raises :class:`ltca.errors.CaseError` naming the field (exit status 2).
 
 Imports ltca.case, ltca.bevel.case, ltca.errors and ltca.study.montecarlo.
