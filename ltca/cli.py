@@ -303,10 +303,12 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--positions", type=_positions, help="mesh positions per cycle (override, at most 2000)")
     t.set_defaults(func=_cmd_tca)
 
-    s = sub.add_parser("study", help="load-case and tolerance studies on Dask (grid, variants, ISO 1328 Monte Carlo)",
-                       description="Runs every variant of a study file at every torque on a Dask cluster: one "
-                                   "compliance per geometry, each point written as it finishes (a rerun skips "
-                                   "them). Writes study.nc, summary.csv, plots and run.json into --out.")
+    s = sub.add_parser("study", help="load-case and tolerance studies on Dask (grid, variants, Monte Carlo)",
+                       description="Runs every variant of a study file (over a cylindrical or a bevel case) at "
+                                   "every torque on a Dask cluster: one compliance per geometry (a bevel pair: per "
+                                   "loaded flank, whatever the assembly errors), each point written as it "
+                                   "finishes (a rerun skips them). Writes study.nc, summary.csv, plots and "
+                                   "run.json into --out.")
     s.add_argument("study", help="study file (.toml) or a shipped study's name, e.g. fzg_torque_misalignment")
     s.add_argument("--out", default="out/study", help="output directory (default: out/study)")
     s.add_argument("--scheduler", default=None, metavar="ADDRESS",

@@ -31,6 +31,9 @@ def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report
     run = result._state
     head["plots"] = write_files(stage, run.plan.case, run.pair, result.dataset, run.plotdata, run.runs,
                                 run.plan.torques_nm)
+    if report:
+        from ..bevel.html_report import write_bevel_report
+        write_bevel_report(stage, run.plan.case, run.pair, head, case_file)
 
 
 ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True)

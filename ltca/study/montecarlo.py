@@ -22,6 +22,11 @@ of seed s is the same whatever the sample size: numpy ``SeedSequence(s, spawn_ke
 - slope and form are the same on every tooth of a member (the case keys are per member): their tooth-to-tooth
   scatter is not modelled.
 
+Drawn case keys (``[monte_carlo.uniform]``, ``[monte_carlo.normal]``, any gear kind, e.g. a bevel pair's
+assembly errors E, P, G and the shaft angle error): each key independently, uniform in [low, high] or normal
+(mean, standard deviation), per sample from numpy ``SeedSequence(seed, spawn_key=(i, 1))`` (sample i is the same
+whatever the sample size, and the ISO 1328 draws of a cylindrical sample are not moved by them).
+
 Imports geometry.errors, ltca.case, ltca.errors and ltca.study.iso1328.
 """
 from __future__ import annotations
@@ -35,7 +40,8 @@ from ..case import CylindricalCase
 from ..errors import CaseError
 from .iso1328 import TOLERANCE_KINDS, Iso1328Tolerances, iso1328_tolerances
 
-__all__ = ["MEMBERS", "member_tolerances", "draw_sample", "check_draws", "check_members"]
+__all__ = ["MEMBERS", "member_tolerances", "draw_sample", "draw_keys", "check_key_draws", "check_draws",
+           "check_members"]
 
 MEMBERS = ("pinion", "gear")
 _KEYS = {"f_Halpha": "profile_slope_um", "f_falpha": "profile_form_um", "f_Hbeta": "lead_slope_um",
@@ -109,6 +115,53 @@ def draw_sample(base: dict, case: CylindricalCase, grade: int, seed: int, index:
             overrides[f"{name}.modifications.{key}"] = round(float(mods.get(key, 0.0)) + d[kind], 9)
         drawn.update({f"{name}.{kind}_um": v for kind, v in d.items()})
     return overrides, drawn
+
+
+def draw_keys(uniform: dict, normal: dict, seed: int, index: int) -> dict[str, float]:
+    """The drawn case keys of Monte Carlo sample ``index``.
+
+    Parameters
+    ----------
+    uniform : dict
+        Dotted case key -> (low, high), in the case's units.
+    normal : dict
+        Dotted case key -> (mean, standard deviation).
+    seed, index : int
+        Study seed and sample number.
+
+    Returns
+    -------
+    dict
+        Dotted case key -> drawn value (rounded to 1e-9 of the unit, as written into the variant's case).
+    """
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(index, 1)))
+    out = {}
+    for key, (lo, hi) in uniform.items():
+        out[key] = round(float(rng.uniform(lo, hi)), 9)
+    for key, (mu, sd) in normal.items():
+        out[key] = round(float(rng.normal(mu, sd)), 9)
+    return out
+
+
+def check_key_draws(drawn: list[dict], uniform: dict, normal: dict) -> dict:
+    """Statistics of the drawn case keys against their laws: per key n, mean, std, min, max, the law's mean and
+    std (uniform: (a + b) / 2, (b - a) / sqrt(12)) and the Kolmogorov-Smirnov p-value against it."""
+    out = {}
+    for key, law in [(k, ("uniform", v)) for k, v in uniform.items()] + [(k, ("normal", v)) for k, v in normal.items()]:
+        x = np.array([d[key] for d in drawn if key in d])
+        if x.size == 0:
+            continue
+        name, (a, b) = law
+        if name == "uniform":
+            exp_mean, exp_std = 0.5 * (a + b), (b - a) / np.sqrt(12)
+            p = stats.kstest(x, "uniform", args=(a, b - a)).pvalue
+        else:
+            exp_mean, exp_std = a, b
+            p = stats.kstest(x, "norm", args=(a, b)).pvalue
+        out[key] = {"law": name, "parameters": [a, b], "n": int(x.size), "mean": float(x.mean()),
+                    "std": float(x.std(ddof=1)) if x.size > 1 else 0.0, "min": float(x.min()), "max": float(x.max()),
+                    "expected_mean": float(exp_mean), "expected_std": float(exp_std), "ks_p": float(p)}
+    return out
 
 
 def check_draws(drawn: list[dict], tolerances: dict[str, Iso1328Tolerances]) -> dict:

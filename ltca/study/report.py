@@ -8,7 +8,8 @@
 - ``mc_histograms.png`` and ``mc_cdf.png`` (Monte Carlo): histograms and empirical CDFs of the loaded TE
   peak-to-peak and of the peak flank pressure, with the 95th percentile marked, at each torque.
 - ``mc_checks.json`` (Monte Carlo): the drawn deviations against the class's tolerances
-  (:func:`ltca.study.montecarlo.check_draws`), and the mean and 95th percentile of each figure.
+  (:func:`ltca.study.montecarlo.check_draws`), the drawn case keys against their laws
+  (:func:`ltca.study.montecarlo.check_key_draws`), and the mean and 95th percentile of each figure.
 
 Imports ltca.case and ltca.study (spec, store, montecarlo).
 """
@@ -23,7 +24,7 @@ import xarray as xr
 
 from ..case import parse_case
 from ..outputs import write_json
-from .montecarlo import check_draws, member_tolerances
+from .montecarlo import check_draws, check_key_draws, member_tolerances
 from .spec import Study
 from .store import SCALARS
 
@@ -158,11 +159,16 @@ def write_outputs(ds: xr.Dataset, out: Path, study: Study, plots: bool = True) -
     (out / "summary.csv.tmp").replace(out / "summary.csv")
     if study.monte_carlo is not None:
         mc = study.monte_carlo
-        case = parse_case(study.base)
-        tols = {m: member_tolerances(case, m, mc.grade) for m in mc.members}
         drawn = [v.drawn for v in study.expand()]
-        write_json(out / "mc_checks.json", {"tolerances_um": {m: t.as_dict() for m, t in tols.items()},
-                                            "deviations": check_draws(drawn, tols), "results": mc_statistics(ds)})
+        checks = {}
+        if mc.grade is not None:
+            case = parse_case(study.base)
+            tols = {m: member_tolerances(case, m, mc.grade) for m in mc.members}
+            checks.update(tolerances_um={m: t.as_dict() for m, t in tols.items()},
+                          deviations=check_draws(drawn, tols))
+        if mc.uniform or mc.normal:
+            checks["drawn_keys"] = check_key_draws(drawn, mc.uniform, mc.normal)
+        write_json(out / "mc_checks.json", {**checks, "results": mc_statistics(ds)})
     if not plots:
         return
     from .. import figures as plt

@@ -10,6 +10,10 @@ need no storage shared with the workers, a killed client loses nothing finished,
 on a worker that dies is rescheduled by Dask on another worker (``distributed.scheduler.allowed-failures``);
 each point is written once, when its future first completes.
 
+The runner does not know the gear kind: a variant's plan names the compliance each of its torques solves on
+(:meth:`ltca.study.tasks.VariantPlan.compliance_key`; a bevel pair has one per loaded flank), the tasks do the
+rest (:mod:`ltca.study.tasks`, :mod:`ltca.study.bevel_tasks`).
+
 Imports ltca.errors and ltca.study (spec, store, tasks, report).
 """
 from __future__ import annotations
@@ -124,20 +128,21 @@ def _execute(client, study: Study, store: StudyStore, todo: dict, prog: _Progres
         kind, obj, extra = meta.pop(f.key)
         if kind == "plan":
             vplan = unwrap(f.result())
-            cf = compliance.get(vplan.key)
-            if cf is None:
-                kept = store.load_compliance(vplan.key)
-                if kept is not None:
-                    cf = client.scatter(kept, hash=False)
-                    stats["compliance_loaded"] += 1
-                    prog.say(f"geometry {vplan.key}: compliance kept from an earlier run")
-                else:
-                    cf = client.submit(compute_compliance, obj.case, vplan, key=f"compliance-{vplan.key}-{token}",
-                                       priority=10)        # before the remaining plans: points wait on it
-                    meta[cf.key] = ("compliance", vplan.key, None)
-                    ac.add(cf)
-                compliance[vplan.key] = cf
             for t in extra:
+                ckey = vplan.compliance_key(t)
+                cf = compliance.get(ckey)
+                if cf is None:
+                    kept = store.load_compliance(ckey)
+                    if kept is not None:
+                        cf = client.scatter(kept, hash=False)
+                        stats["compliance_loaded"] += 1
+                        prog.say(f"geometry {ckey}: compliance kept from an earlier run")
+                    else:
+                        cf = client.submit(compute_compliance, obj.case, vplan, t, key=f"compliance-{ckey}-{token}",
+                                           priority=10)        # before the remaining plans: points wait on it
+                        meta[cf.key] = ("compliance", ckey, None)
+                        ac.add(cf)
+                    compliance[ckey] = cf
                 pf = client.submit(solve_point, obj.case, vplan, cf, t, key=f"point-{obj.id}-T{t:g}-{token}",
                                    priority=5)
                 meta[pf.key] = ("point", obj, t)

@@ -22,14 +22,20 @@ A study TOML (paths relative to the study file)::
     samples = 200
     seed = 1
     members = ["pinion", "gear"]
+    [monte_carlo.uniform]                 # and / or any case keys drawn: uniform in [low, high] ...
+    "assembly.lead_misalignment_um" = [-5.0, 5.0]
+    [monte_carlo.normal]                  # ... or normal (mean, standard deviation)
+    "assembly.lead_deviation_um" = [0.0, 3.0]
 
-Variants are the product of the named variants, the grid points and the Monte Carlo samples; each runs at
-every torque. A variant's id hashes everything that defines its results except the torque list (its
-resolved case and the largest torque, which sets the teeth in mesh), so a rerun finds what is done.
+The base case is a cylindrical or a bevel pair (``[bevel]``; then ``grade`` and ``members`` do not apply and
+the torques may be negative: the coast flank). Variants are the product of the named variants, the grid points
+and the Monte Carlo samples; each runs at every torque. A variant's id hashes everything that defines its
+results except the torque list (its resolved case and the largest torque, which sets the teeth in mesh), so a
+rerun finds what is done.
 A bad study file raises :class:`ltca.errors.CaseError` naming the field (exit status 2).
 
 The file is declared as :mod:`ltca.validation` tables (:data:`CASE`); the dotted keys it varies are checked against
-the case keys after the table check. Imports ltca.case, ltca.errors, ltca.validation and ltca.study.montecarlo.
+the case keys after the table check. Imports ltca.case, ltca.bevel.case, ltca.errors, ltca.validation and ltca.study.montecarlo.
 """
 from __future__ import annotations
 
@@ -40,12 +46,17 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from ..case import case_keys, parse_case, read_toml, to_toml
 from ..errors import CaseError
 from ..validation import Int, List, Num, OneOrList, Str, Table, TableList, check_table
-from .montecarlo import MEMBERS, check_members, draw_sample
+from .montecarlo import MEMBERS, check_members, draw_keys, draw_sample
 
-__all__ = ["Study", "Variant", "MonteCarlo", "set_key", "to_toml", "CASE"]
+__all__ = ["Study", "Variant", "MonteCarlo", "set_key", "to_toml", "CASE", "study_keys", "validate_case"]
+
+#: the gear kinds a study runs
+STUDY_KINDS = ("cylindrical", "bevel")
 
 _ANY_KEY = lambda k: True       # noqa: E731  dotted case keys, checked against the case's keys after the table
 _TORQUE = Num(0, 1e6, "N m", lo_open=True)
@@ -56,7 +67,9 @@ CASE = Table({
         "name": Str(non_empty=True, max_len=200, meaning="the study's name (default: the file's stem)"),
         "case": Str(non_empty=True, max_len=1000, required=True,
                     meaning="the base case file (.toml), relative to the study file"),
-        "torque_nm": OneOrList(_TORQUE, 1, 100, meaning="the torque dimension (default: the base case's torques)"),
+        "torque_nm": OneOrList(Num(-1e6, 1e6, "N m"), 1, 100,
+                               meaning="the torque dimension (default: the base case's torques); a bevel study: "
+                                       "the sign picks the flank"),
         "description": Str(max_len=2000, default="", meaning="free text"),
     }, required=True),
     "set": Table({}, extra=_ANY_KEY, meaning="fixed overrides of the base case: \"dotted.case.key\" = value"),
@@ -66,23 +79,31 @@ CASE = Table({
                                 extra=_ANY_KEY, meaning="\"dotted.case.key\" = value of this variant"), 1, 10_000,
                           meaning="named variants: name and \"dotted.case.key\" = value (times the grid)"),
     "monte_carlo": Table({
-        "grade": Int(1, 11, required=True, note="an ISO 1328-1:2013 flank tolerance class",
-                      meaning="ISO 1328-1:2013 flank tolerance class of every member"),
+        "grade": Int(1, 11, note="an ISO 1328-1:2013 flank tolerance class",
+                      meaning="ISO 1328-1:2013 flank tolerance class of every member (cylindrical pairs)"),
         "samples": Int(1, 100_000, required=True, note="the sample size", meaning="the sample size"),
         "seed": Int(0, 2 ** 32 - 1, default=0, meaning="random seed; sample i does not depend on samples"),
         "members": List(Str(MEMBERS), 1, len(MEMBERS), default=list(MEMBERS),
                         meaning="the members whose tooth errors are drawn"),
-    }, meaning="ISO 1328-1 tooth errors drawn per sample (times the variants and the grid)"),
+        "uniform": Table({}, extra=_ANY_KEY, default={},
+                         meaning="\"dotted.case.key\" = [low, high]: drawn uniform"),
+        "normal": Table({}, extra=_ANY_KEY, default={},
+                        meaning="\"dotted.case.key\" = [mean, standard deviation]: drawn normal"),
+    }, meaning="a sample per draw (times the variants and the grid): ISO 1328-1 tooth errors and / or case keys"),
 })
 
 
 @dataclass(frozen=True)
 class MonteCarlo:
-    """A Monte Carlo sample of ISO 1328-1 tooth errors."""
-    grade: int
+    """A Monte Carlo sample: ISO 1328-1 tooth errors of class ``grade`` (cylindrical pairs; None: none) and / or
+    case keys drawn uniform in [low, high] (``uniform``: key -> (low, high)) or normal (``normal``: key -> (mean,
+    standard deviation)), in the case's own units."""
+    grade: int | None
     samples: int
     seed: int
     members: tuple[str, ...] = MEMBERS
+    uniform: dict = field(default_factory=dict)
+    normal: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -104,8 +125,46 @@ def set_key(data: dict, key: str, value) -> None:
     data[last] = copy.deepcopy(value)
 
 
-def _check_key(key: str, where: str, file: str | None = None) -> None:
-    keys = case_keys()
+def study_keys(kind: str) -> dict[str, str]:
+    """Every settable key of a case of ``kind`` (dotted path -> what is allowed)."""
+    if kind == "cylindrical":
+        return case_keys()
+    from ..bevel.case import _CASE
+
+    out = {}
+
+    def walk(table, prefix):
+        for name, f in table.fields.items():
+            if hasattr(f, "fields"):
+                walk(f, f"{prefix}{name}.")
+            else:
+                out[f"{prefix}{name}"] = getattr(f, "note", "") or ""
+    walk(_CASE, "")
+    return {k: v for k, v in out.items() if not k.startswith("case.")}
+
+
+def _kind(data: dict) -> str:
+    """The gear kind of a case given as TOML tables, by its tables (as :data:`ltca.cases.KINDS` tells them)."""
+    if "bevel" in data:
+        return "bevel"
+    other = {"satellite": "planetary", "study": "study", "budget": "budget", "member": "budget", "chain": "chain",
+             "workpiece": "chain"}
+    for table, kind in other.items():
+        if table in data:
+            return kind
+    return "cylindrical"
+
+
+def validate_case(kind: str, data: dict, file: str | None = None):
+    """The typed record of a case of ``kind`` given as TOML tables (:class:`ltca.errors.CaseError` if bad)."""
+    if kind == "cylindrical":
+        return parse_case(data, file=file)
+    from ..bevel.case import bevel_case_from_data
+    return bevel_case_from_data(copy.deepcopy({k: v for k, v in data.items() if k != "design"}), file, "variant")
+
+
+def _check_key(key: str, where: str, file: str | None = None, kind: str = "cylindrical") -> None:
+    keys = study_keys(kind)
     if key not in keys:
         near = sorted(k for k in keys if k.split(".")[-1] == key.split(".")[-1])
         raise CaseError(where, key, "unknown key to vary: a dotted case key such as 'load.torque_nm' or "
@@ -113,6 +172,43 @@ def _check_key(key: str, where: str, file: str | None = None) -> None:
                         file)
     if key == "load.driver":
         raise CaseError(where, key, "not variable; vary 'load.torque_nm' or give [study] torque_nm", file)
+
+
+def _torques(values, where: str, file: str, kind: str = "cylindrical") -> tuple[float, ...]:
+    words = ("a non-zero number in [-1e5, 1e5] N m (the sign picks the flank)" if kind == "bevel"
+             else "a number in (0, 1e6] N m")
+    if not isinstance(values, list) or not values:
+        raise CaseError(where, values, f"a non-empty list of torques, each {words}", file)
+    for i, t in enumerate(values):
+        ok = not isinstance(t, bool) and isinstance(t, (int, float)) and (
+            (t != 0 and -1e5 <= t <= 1e5) if kind == "bevel" else 0 < t <= 1e6)
+        if not ok:
+            raise CaseError(f"{where}[{i}]", t, words, file)
+    if len(set(values)) != len(values):
+        raise CaseError(where, values, "distinct torques", file)
+    return tuple(float(t) for t in values)
+
+
+def _draw_table(m: dict, name: str, file: str, kind: str) -> dict:
+    """``[monte_carlo.uniform]`` (key -> [low, high]) or ``[monte_carlo.normal]`` (key -> [mean, std])."""
+    raw = m.get(name, {})
+    if not isinstance(raw, dict):
+        raise CaseError(f"monte_carlo.{name}", raw, "a table of case keys", file)
+    out = {}
+    for key, pair in raw.items():
+        where = f"monte_carlo.{name}.{key}"
+        _check_key(key, where, file, kind)
+        if key.startswith("load."):
+            raise CaseError(where, pair, "not drawn: the torques are a dimension of the study", file)
+        what = "[low, high] with low < high" if name == "uniform" else "[mean, standard deviation] with std > 0"
+        if not (isinstance(pair, list) and len(pair) == 2 and all(
+                not isinstance(x, bool) and isinstance(x, (int, float)) and np.isfinite(x) for x in pair)):
+            raise CaseError(where, pair, f"two finite numbers {what}", file)
+        a, b = float(pair[0]), float(pair[1])
+        if (name == "uniform" and not a < b) or (name == "normal" and not b > 0):
+            raise CaseError(where, pair, what, file)
+        out[key] = (a, b)
+    return out
 
 
 @dataclass(frozen=True)
@@ -125,6 +221,7 @@ class Study:
     variants: tuple[dict, ...]                # named variants: {"name": ..., dotted key: value}
     monte_carlo: MonteCarlo | None = None
     file: str | None = None
+    kind: str = "cylindrical"
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "Study":
@@ -154,25 +251,30 @@ class Study:
         if not found:
             raise CaseError("study.case", st["case"], f"an existing case file (looked for {case_path})", file)
         base = read_toml(case_path)
+        kind = _kind(base)
+        if kind not in STUDY_KINDS:
+            raise CaseError("study.case", st["case"], f"a gear pair case of kind {' or '.join(STUDY_KINDS)} "
+                            f"(this is a {kind} case)", file)
         for key, value in d["set"].items():
-            _check_key(key, f"set.{key}", file)
+            _check_key(key, f"set.{key}", file, kind)
             set_key(base, key, value)
         grid = {}
         torques = None
         for key, values in d["grid"].items():
-            _check_key(key, f"grid.{key}", file)
+            _check_key(key, f"grid.{key}", file, kind)
             if not isinstance(values, list) or not values:
                 raise CaseError(f"grid.{key}", values, "a non-empty list of values (an empty grid has no variant)",
                                 file)
             if key == "load.torque_nm":
-                torques = tuple(List(_TORQUE, 1, 100).check(values, f"grid.{key}", file))
+                torques = _torques(values, f"grid.{key}", file, kind)
             else:
                 grid[key] = list(values)
         if st["torque_nm"] is not None:
             if torques is not None:
                 raise CaseError("study.torque_nm", data["study"]["torque_nm"], "given once: here or as grid "
                                 "'load.torque_nm'", file)
-            torques = st["torque_nm"]
+            t = st["torque_nm"]
+            torques = _torques(list(t), "study.torque_nm", file, kind)
         raw_variants = data.get("variants", [])
         names = set()
         for i, v in enumerate(raw_variants):
@@ -183,26 +285,42 @@ class Study:
             names.add(name)
             for key in v:
                 if key != "name":
-                    _check_key(key, f"variants[{i}].{key}", file)
+                    _check_key(key, f"variants[{i}].{key}", file, kind)
                     if key.startswith("load."):
                         raise CaseError(f"variants[{i}].{key}", v[key], "not a per-variant key: the torques are a "
                                         "dimension of the study ([study] torque_nm or grid 'load.torque_nm')", file)
         mc = None
         if d["monte_carlo"] is not None:
             m = d["monte_carlo"]
-            mc = MonteCarlo(m["grade"], m["samples"], m["seed"], check_members(m["members"]))
-        base_case = parse_case(base, file=str(case_path))
-        if mc is not None:
+            raw_m = data["monte_carlo"]
+            if kind != "cylindrical" and ({"grade", "members"} & set(raw_m)):
+                key = sorted({"grade", "members"} & set(raw_m))[0]
+                raise CaseError(f"monte_carlo.{key}", raw_m[key], f"not for a {kind} study (ISO 1328-1 tooth "
+                                "errors are drawn for cylindrical pairs); draw case keys with [monte_carlo.uniform] "
+                                "or [monte_carlo.normal]", file)
+            uniform, normal = _draw_table(m, "uniform", file, kind), _draw_table(m, "normal", file, kind)
+            if set(uniform) & set(normal):
+                raise CaseError("monte_carlo.normal", sorted(set(uniform) & set(normal))[0],
+                                "a key drawn once: uniform or normal", file)
+            if m["grade"] is None and not (uniform or normal):
+                raise CaseError("monte_carlo", "no draws", "what to draw: grade (ISO 1328-1 tooth errors, "
+                                "cylindrical pairs) and / or [monte_carlo.uniform] or [monte_carlo.normal] case keys",
+                                file)
+            mc = MonteCarlo(m["grade"], m["samples"], m["seed"], check_members(m["members"]), uniform, normal)
+        base_case = validate_case(kind, base, str(case_path))
+        if mc is not None and mc.grade is not None:
             from .montecarlo import member_tolerances
             for member in mc.members:
                 member_tolerances(base_case, member, mc.grade)
         if torques is None:
-            torques = tuple(t * 1e-3 for t in base_case.torques)
+            torques = tuple(t * 1e-3 for t in base_case.torques) if kind == "cylindrical" else base_case.torques
+            if not torques:
+                raise CaseError("study.torque_nm", None, "the study's torques (N m): the base case gives none", file)
         base.setdefault("load", {})["torque_nm"] = list(torques)
         study = cls(st["name"] or (Path(file).stem if file else "study"), base, torques, grid,
-                    tuple(raw_variants), mc, file)
+                    tuple(raw_variants), mc, file, kind)
         for v in study.expand():                   # every variant must be a valid case
-            parse_case(v.case, file=f"{file}: variant {v.name!r} {v.coords}" if file else None)
+            validate_case(kind, v.case, f"{file}: variant {v.name!r} {v.coords} {v.drawn}" if file else None)
         return study
 
     @property
@@ -228,9 +346,15 @@ class Study:
             drawn = {}
             if sample is not None:
                 mc = self.monte_carlo
-                overrides, drawn = draw_sample(case, parse_case(case), mc.grade, mc.seed, sample, mc.members)
-                for key, value in overrides.items():
-                    set_key(case, key, value)
+                if mc.grade is not None:
+                    overrides, drawn = draw_sample(case, parse_case(case), mc.grade, mc.seed, sample, mc.members)
+                    for key, value in overrides.items():
+                        set_key(case, key, value)
+                if mc.uniform or mc.normal:
+                    values = draw_keys(mc.uniform, mc.normal, mc.seed, sample)
+                    for key, value in values.items():
+                        set_key(case, key, value)
+                    drawn.update(values)
                 coords["sample"] = sample
             ident = json.dumps({"case": {k: v for k, v in case.items() if k != "load"},
                                 "torque_nom": max(self.torques)}, sort_keys=True, default=str)

@@ -25,9 +25,11 @@ from .spec import Study, Variant
 
 __all__ = ["StudyStore", "load_study", "SCALARS"]
 
-#: per-point headline figures kept as (variant, torque) variables: summary key -> (variable, units)
+#: per-point headline figures kept as (variant, torque) variables: summary key -> (variable, units); NaN where a
+#: kind has none (a bevel pair has no ``max_pairs_in_contact``)
 SCALARS = {"te_loaded_ptp_arcsec": ("te_loaded_ptp", "arcsec"), "te_unloaded_ptp_arcsec": ("te_unloaded_ptp", "arcsec"),
            "te_loaded_mean_arcsec": ("te_loaded_mean", "arcsec"), "max_contact_pressure_mpa": ("peak_pressure", "MPa"),
+           "max_flank_pressure_mpa": ("peak_flank_pressure", "MPa"),
            "mesh_stiffness_mean_n_per_mm_um": ("mesh_stiffness_mean", "N/(mm um)"),
            "max_pairs_in_contact": ("max_pairs_in_contact", "1"), "converged": ("converged", "1")}
 
@@ -102,7 +104,8 @@ class StudyStore:
                         d = d.load()
                     head = json.loads(d.attrs["summary"])
                     d = d.drop_vars(["pressure", "edge_pattern", "flank_roll", "face"], errors="ignore")
-                    d = d.assign({var: ((), float(head[k]), {"units": u}) for k, (var, u) in SCALARS.items()})
+                    d = d.assign({var: ((), float(head.get(k, np.nan)), {"units": u})
+                                  for k, (var, u) in SCALARS.items()})
                     d = d.assign(max_root_stress_pinion=((), head["max_root_stress_mpa"]["pinion"], {"units": "MPa"}),
                                  max_root_stress_gear=((), head["max_root_stress_mpa"]["gear"], {"units": "MPa"}))
                     d.attrs = {}
@@ -126,13 +129,15 @@ class StudyStore:
             coords[f"drawn.{key}"] = ("variant", _coord([v.drawn.get(key, np.nan) for v in variants]))
         ds = ds.assign_coords(coords)
         ds["torque"].attrs.update(units="N m", long_name="pinion torque")
-        ds.attrs.update(study=study.name, study_file=str(study.file), varied_keys=json.dumps(study.varied_keys),
+        ds.attrs.update(study=study.name, kind=study.kind, study_file=str(study.file),
+                        varied_keys=json.dumps(study.varied_keys),
                         points_done=int(np.isfinite(ds.te_loaded_ptp.values).sum()),
                         points_total=len(variants) * len(study.torques))
         if study.monte_carlo is not None:
             mc = study.monte_carlo
             ds.attrs.update(monte_carlo=json.dumps({"grade": mc.grade, "samples": mc.samples, "seed": mc.seed,
-                                                    "members": list(mc.members)}))
+                                                    "members": list(mc.members), "uniform": mc.uniform,
+                                                    "normal": mc.normal}))
         path = self.root / "study.nc"
         write_netcdf_atomic(path, ds)
         return ds

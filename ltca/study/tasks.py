@@ -13,6 +13,11 @@ one (variant, torque) point. Each takes and returns plain picklable records, so 
   same functions as ``ltca run`` (:func:`ltca.cylindrical.run.analyse`, ``position_dataset``, ``summary``),
   so a point equals a standalone run of that variant.
 
+A bevel pair's tasks are :mod:`ltca.study.bevel_tasks` (one compliance per loaded flank, shared by every
+assembly error and torque of that flank); the three functions here hand a bevel variant on to them, so the
+runner is the same for every kind: a kind supplies "plan a variant" (with its compliance key per torque),
+"compute a shared compliance" and "solve one point".
+
 Imports ltca.case, ltca.cylindrical and fem.
 """
 from __future__ import annotations
@@ -106,6 +111,10 @@ class VariantPlan:
     plan: BodyPlan
     seconds: float
 
+    def compliance_key(self, torque_nm: float) -> str:
+        """The key of the compliance a point at ``torque_nm`` solves on (one per geometry: every torque)."""
+        return self.key
+
 
 @dataclass(frozen=True)
 class Compliance:
@@ -159,6 +168,9 @@ def plan_variant(case_dict: dict) -> VariantPlan:
     case_dict : dict
         The variant's resolved case, as read from TOML.
     """
+    if "bevel" in case_dict:
+        from . import bevel_tasks
+        return bevel_tasks.plan_variant(case_dict)
     t0 = time.perf_counter()
     case, model, fid = _setup(case_dict)
     plan = plan_bodies(model, fid, cycle_rolls(case.positions, case.pinion.teeth), max(case.torques))
@@ -166,8 +178,8 @@ def plan_variant(case_dict: dict) -> VariantPlan:
 
 
 @_user_errors
-def compute_compliance(case_dict: dict, vplan: VariantPlan) -> Compliance:
-    """Both bodies' compliance of the variant's geometry (the costly step, once per geometry key).
+def compute_compliance(case_dict: dict, vplan: VariantPlan, torque_nm: float | None = None) -> Compliance:
+    """Both bodies' compliance of the variant's geometry (the costly step, once per compliance key).
 
     Parameters
     ----------
@@ -175,7 +187,12 @@ def compute_compliance(case_dict: dict, vplan: VariantPlan) -> Compliance:
         Any variant of that geometry (resolved case, as read from TOML).
     vplan : VariantPlan
         Its plan.
+    torque_nm : float, optional
+        A torque the compliance serves (picks a bevel pair's loaded flank; not used for a cylindrical pair).
     """
+    if not isinstance(vplan, VariantPlan):
+        from . import bevel_tasks
+        return bevel_tasks.compute_compliance(case_dict, vplan, torque_nm)
     t0 = time.perf_counter()
     _, model, _ = _setup(case_dict)
     bodies = []
@@ -206,6 +223,9 @@ def solve_point(case_dict: dict, vplan: VariantPlan, compliance: Compliance, tor
     head : dict
         Its :func:`ltca.cylindrical.results.summary` (the keys of ``summary.json``).
     """
+    if not isinstance(vplan, VariantPlan):
+        from . import bevel_tasks
+        return bevel_tasks.solve_point(case_dict, vplan, compliance, torque_nm)
     if compliance.key != vplan.key:
         raise ValueError(f"compliance {compliance.key} handed to a variant of geometry {vplan.key}")
     t0 = time.perf_counter()
