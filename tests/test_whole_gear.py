@@ -77,8 +77,8 @@ def test_helical_full_gear_is_lofted_on_the_helicoid():
     """Helical C14's pinion (beta 20 deg, b 40 mm): every tooth labelled, the flank vertices of tooth 0 within
     1 um of the transverse outline turned by tan(beta) / r z (measured 0.3 um), over the whole face."""
     from fem.solids.full_gear import FullGearSpec, build_full_gear
-    from fem.solids.section import rot2
-    from fem.solids.segment_gmsh import polyline_distance
+    from fem.solids.planar import rot2
+    from fem.solids.planar import polyline_distance
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
     from ltca.verify.whole_gear import twist

@@ -27,7 +27,7 @@ import numpy as np
 from geometry.cylindrical import arc_length
 from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
 from fem.calculix.run import read_results, run_ccx
-from fem.solids import ContactLine, build_refined_segment, facets_near_lines
+from fem.solids import ContactLine, build_refined_body, facets_near_lines
 from fem.compliance import body_spec
 from geometry.pair import rotation_z
 
@@ -197,8 +197,8 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
         i_focus = [k for k, _, _ in lines].index(focus.tooth)   # ValueError: the focus tooth is not in contact
         F1 = ((_window(L1[i_focus], focus), focus.h, focus.half_band),)
         F2 = ((_window(L2[i_focus], focus), focus.h, focus.half_band),)
-    m1 = build_refined_segment(spec1, L1, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F1)
-    m2 = build_refined_segment(spec2, L2, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F2)
+    m1 = build_refined_body(spec1, L1, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F1)
+    m2 = build_refined_body(spec2, L2, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F2)
     t_mesh = time.perf_counter() - t0
     # contact surfaces: the driving flank (pinion) and the loaded flank and tip (gear) near each contact line
     side2 = "right" if model.gear_side > 0 else "left"
