@@ -1,4 +1,4 @@
-"""The package layout: no import circles, and imports run one way, geometry <- fem <- ltca.
+"""The package layout: no import circles, and imports run one way, geometry <- fem <- ltca <- tools.
 
 Every .py file under geometry/, fem/ and ltca/ is parsed with ``ast``; every import counts (module level,
 inside functions, under ``TYPE_CHECKING``), relative imports resolved. ``from p import name`` is an edge
@@ -10,14 +10,15 @@ import ast
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-PACKAGES = ("geometry", "fem", "ltca")
-ORDER = {"geometry": 0, "fem": 1, "ltca": 2}          # a package may import only packages of lower or equal rank
+PACKAGES = ("geometry", "fem", "ltca")                # installed
+TOOLS = "tools"                                       # maintainer tooling in the repository, not installed
+ORDER = {"geometry": 0, "fem": 1, "ltca": 2, TOOLS: 3}   # a package may import only packages of lower or equal rank
 
 
-def _modules(root: Path = ROOT) -> dict[str, tuple[Path, bool]]:
+def _modules(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> dict[str, tuple[Path, bool]]:
     """Module name -> (file, is a package's __init__)."""
     out = {}
-    for pkg in PACKAGES:
+    for pkg in packages:
         for path in sorted((root / pkg).rglob("*.py")):
             parts = path.relative_to(root).with_suffix("").parts
             is_pkg = parts[-1] == "__init__"
@@ -35,9 +36,9 @@ def _resolve(name: str, modules) -> str | None:
     return None
 
 
-def import_graph(root: Path = ROOT) -> dict[str, dict[str, int]]:
-    """Module -> {imported module of ours: line of the first such import}."""
-    modules = _modules(root)
+def import_graph(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> dict[str, dict[str, int]]:
+    """Module -> {imported module of ours: line of the first such import} over ``packages``."""
+    modules = _modules(root, packages)
     graph: dict[str, dict[str, int]] = {}
     for mod, (path, is_pkg) in modules.items():
         edges: dict[str, int] = {}
@@ -213,3 +214,22 @@ def test_every_package_says_what_it_holds():
     missing = [m for m, (path, is_pkg) in _modules().items()
                if is_pkg and not ast.get_docstring(ast.parse(path.read_text()))]
     assert not missing, f"packages without a docstring: {missing}"
+
+
+def test_the_tooling_imports_the_package_never_the_reverse():
+    """tools/ (not installed) may import geometry, fem and ltca; no installed module imports tools, and the tooling
+    makes no import circle."""
+    graph = import_graph(packages=PACKAGES + (TOOLS,))
+    assert any(m.startswith(TOOLS + ".") for m in graph), "the scan must see tools/"
+    bad = against_the_direction(graph)
+    assert not bad, "imports against geometry <- fem <- ltca <- tools:\n" + "\n".join(bad)
+    cycles = find_cycles(graph)
+    assert not cycles, "import circles:\n" + _show(cycles)
+
+
+def test_the_tooling_is_not_installed():
+    """The package discovery of pyproject.toml does not pick up tools/ (it stays in the repository)."""
+    import pytest
+    tomllib = pytest.importorskip("tomllib")
+    found = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"]["find"]
+    assert not any(pattern.split("*")[0].split(".")[0] == TOOLS for pattern in found["include"])

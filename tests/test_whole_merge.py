@@ -1,4 +1,4 @@
-"""``ltca validate --reference calculix-whole --merge FILE``: refining chosen positions of a frozen whole-gear
+"""``python3 -m tools.calculix_refs.merge_whole FILE``: refining chosen positions of a frozen whole-gear
 reference keeps the rest of the file, without ccx (CalculiX is replaced by a stand-in)."""
 from __future__ import annotations
 
@@ -15,21 +15,21 @@ FROZEN = ROOT / "tests" / "reference" / "fzg_c14_calculix_whole.json"
 
 def test_merge_argument_errors_before_ccx(tmp_path, capsys):
     """A position the file does not hold, or a missing file, exits 2 with the option named."""
-    from ltca.cli import main
+    from tools.calculix_refs.merge_whole import main
     ref = tmp_path / "ref.json"
     shutil.copy(FROZEN, ref)
-    base = ["validate", "--reference", "calculix-whole", "--case", str(CASES / "fzg_c14.toml"), "--out", str(tmp_path)]
-    assert main(base + ["--positions", "-3", "--merge", str(ref)]) == 2 and "--positions" in capsys.readouterr().err
-    assert main(base + ["--positions", "-9", "--merge", str(tmp_path / "none.json")]) == 2
-    assert "--merge" in capsys.readouterr().err
+    base = ["--case", str(CASES / "fzg_c14.toml"), "--out", str(tmp_path)]
+    assert main([str(ref)] + base + ["--positions", "-3"]) == 2 and "--positions" in capsys.readouterr().err
+    assert main([str(tmp_path / "none.json")] + base + ["--positions", "-9"]) == 2
+    assert "FILE" in capsys.readouterr().err
     assert ref.read_bytes() == FROZEN.read_bytes()
 
 
 def test_rung_settings_and_ladder_change():
     """A merged rung scales the frozen band, its half-width beyond the band, the penalty and the fillets as the
-    ``--freeze`` ladder does (the 0 deg 100 um rung of FZG C14 is the -9 deg 150 um run refined once)."""
+    freeze's ladder does (the 0 deg 100 um rung of FZG C14 is the -9 deg 150 um run refined once)."""
     from ltca.verify.whole_gear import whole_settings
-    from ltca.verify.whole_merge import ladder_change, ladder_key, rung_settings
+    from tools.calculix_refs.merge_whole import ladder_change, ladder_key, rung_settings
     rec = json.loads(FROZEN.read_text())
     at_150 = next(p for p in rec["convergence"] if round(p["h_contact_um"]) == 150)
     at_100 = next(p for p in rec["convergence"] if round(p["h_contact_um"]) == 100)
@@ -48,7 +48,7 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     extends its ladder (the frozen run before it); the first position's ladder, the other positions and the original
     command stay."""
     import fem.calculix.run
-    from ltca.verify import whole_merge
+    from tools.calculix_refs import merge_whole as whole_merge
     from ltca.verify.whole_gear import WholeResult
 
     def fake(lm, roll, torque, st, workdir, say=print):
@@ -65,7 +65,7 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     shutil.copy(FROZEN, ref)
     before = json.loads(ref.read_text())
     assert whole_merge.run_whole_merge(str(CASES / "fzg_c14.toml"), [-4.5], str(tmp_path), str(ref), threads=1,
-                                       command="ltca validate --reference calculix-whole --merge x",
+                                       command="python3 -m tools.calculix_refs.merge_whole x",
                                        progress=False) == 0
     after = json.loads(ref.read_text())
     assert after["convergence"] == before["convergence"] and after["command"] == before["command"]
