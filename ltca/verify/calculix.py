@@ -1,6 +1,6 @@
 """Cross-check of the loaded contact against CalculiX on the same gear pair.
 
-For each mesh position both members' tooth segments (the same teeth, bore and outline as our
+For each mesh position both members' whole-gear bodies (the same teeth, bore and outline as our
 compliance bodies) are meshed with quadratic tetrahedra refined in a band around the unloaded contact
 lines, placed in the world at the position (pinion rotated by phi1 = phi_pitch - roll, gear by
 ``pair.gear_frame(phi1)``), and solved by CalculiX with frictionless surface-to-surface penalty contact:
