@@ -83,3 +83,41 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     assert {k: v for k, v in new.items() if k != "ours_at_freeze"} == ladder[-1]
     assert set(new["ours_at_freeze"]) == {"te", "stiffness", "share", "flank_pressure", "root_pinion", "root_gear"}
     assert after["merged"][-1]["positions"] == ["-4.5"] and after["merged"][-1]["refine"] == 1
+
+
+def test_the_check_runs_once_per_position_and_the_freeze_adds_its_ladder(tmp_path, monkeypatch, capsys):
+    """``ltca validate --reference calculix-whole`` runs CalculiX once per position at the base band; the freeze
+    script adds the ladder at the first position (``--refine 1 --ladder both``: 1.5, 1, 1/1.5 of the band) and
+    writes a reference that records its command, the ladder and our figures (CalculiX replaced by a stand-in)."""
+    import fem.calculix.run
+    from ltca.verify import whole_check
+    from ltca.verify.whole_gear import WholeResult
+    from tools.calculix_refs import freeze_whole
+    runs = []
+
+    def fake(lm, roll, torque, st, workdir, say=print):
+        runs.append((roll, round(1e3 * st.h_contact, 3)))
+        info = {"nodes": 2, "elements": 1, "nodes_pinion": 1, "nodes_gear": 1, "h_contact_mm": st.h_contact,
+                "settings": dataclasses.asdict(st), "ccx_wall": 1.0, "mesh_wall": 1.0, "deck_sha256": "a" * 64,
+                "p_flank": 1500.0}
+        root = {m: {"max": 230.0, "per_tooth": {"0": 230.0}, "at": {"z_mm": 0.0}} for m in ("pinion", "gear")}
+        return WholeResult(roll, 117.5, {0: 5912.0}, 14.7, 1500.0, 2.0, info, root)
+    monkeypatch.setattr(fem.calculix.run, "ccx_path", lambda: "ccx")
+    monkeypatch.setattr(whole_check, "solve_whole", fake)
+    monkeypatch.setattr(freeze_whole, "solve_whole", fake)
+    monkeypatch.setattr(freeze_whole, "ccx_version", lambda: "This is Version 0")
+    case = str(CASES / "fzg_c14.toml")
+    whole_check.run_whole_validation(case, [0.0, -9.0], str(tmp_path / "check"), band_um=150.0, progress=False)
+    assert runs == [(0.0, 150.0), (-9.0, 150.0)]
+    assert (tmp_path / "check" / "whole_gear.csv").read_text().count("\n") == 3
+    runs.clear()
+    ref = tmp_path / "ref.json"
+    assert freeze_whole.main([str(ref), "--case", case, "--positions", "0", "-9", "--band", "150", "--refine", "1",
+                              "--ladder", "both", "--out", str(tmp_path / "freeze"), "--quiet"]) in (0, 1)
+    assert runs == [(0.0, 150.0), (-9.0, 150.0), (0.0, 225.0), (0.0, 150.0), (0.0, 100.0), (-9.0, 150.0)]
+    rec = json.loads(ref.read_text())
+    assert rec["command"].startswith("python3 -m tools.calculix_refs.freeze_whole " + str(ref))
+    assert [e["h_contact_um"] for e in rec["convergence"]] == pytest.approx([225.0, 150.0, 100.0])
+    assert [p["h_contact_um"] for p in rec["positions"]] == pytest.approx([100.0, 150.0])
+    assert set(rec["positions"][0]["ours_at_freeze"]) == {"te", "stiffness", "share", "flank_pressure",
+                                                          "root_pinion", "root_gear"}
