@@ -1,6 +1,6 @@
 """fem: the finite-element side, by concept. Imports geometry only, never ltca.
 
-    solids/     gear solids meshed by gmsh (the cylindrical tooth segment now), one mesh record
+    solids/     gear solids meshed by gmsh (whole cylindrical bodies, bevel members), one mesh record (BodyMesh)
     elastic     P2 tetrahedral elasticity: stiffness assembly, boundary conditions
     solver      sparse factorisation (PARDISO, CHOLMOD or SuperLU)
     loads       patch loads on flank facets

@@ -35,16 +35,16 @@ from .elastic import assemble_stiffness
 from .fillet import fillet_points, fillet_size
 from .loads import patch_loads, patch_quadrature
 from .readout import interpolation_matrix, nodal_stress, stress_matrix
-from .solids import GearBodySpec, SegmentSpec, build_gear_body
+from .solids import GearBodySpec, build_gear_body
 from .solver import factorize
 
-__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "flank_compliance", "principal_max", "body_spec", "segment_spec"]
+__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "flank_compliance", "principal_max", "body_spec"]
 
 
 @dataclass(frozen=True)
 class ComplianceSpec:
     """What to model for one body and at which fidelity (mm, MPa)."""
-    teeth: tuple[int, ...]        # teeth in the FE segment (loaded ones plus a neighbour each side)
+    teeth: tuple[int, ...]        # teeth meshed finely in the FE body (loaded ones plus a neighbour each side)
     loaded: tuple[int, ...]       # teeth whose `side` flank carries load
     side: int                     # +1 right flank, -1 left flank
     r_range: tuple[float, float]  # radii of the loaded flank grid (form radius .. tip), mm
@@ -183,23 +183,14 @@ def _patch_halfspace(quadrature, Y, Nn, n_teeth, E, nu) -> np.ndarray:
     return H
 
 
-def segment_spec(profile, teeth, r_bore: float, face_width: float, h_flank: float, h_body: float) -> SegmentSpec:
-    """The tooth segment of a generated profile (geometry.involute.ToothProfile) to mesh: ``teeth``, bore
-    (internal gear: rim) radius, face width and element sizes in mm."""
-    return SegmentSpec(outline=np.asarray(profile.xy), kind=np.asarray(profile.kind, np.int8),
-                       side=np.asarray(profile.side, np.int8), z=profile.z, teeth=tuple(teeth), r_bore=r_bore,
-                       face_width=face_width, lead_twist=float(np.tan(profile.beta) / profile.r_ref),
-                       internal=profile.internal, h_flank=h_flank, h_body=h_body)
-
-
 def body_spec(profile, spec: ComplianceSpec) -> GearBodySpec:
     """The whole-gear body of a generated profile (geometry.involute.ToothProfile) for a compliance spec."""
-    seg = segment_spec(profile, spec.teeth, spec.r_bore, spec.face_width, spec.h_flank, spec.h_body)
-    h_fillet = fillet_size(seg.outline, seg.kind, seg.side, spec.side, spec.fillet, spec.h_flank)
+    xy, kind, side_code = np.asarray(profile.xy), np.asarray(profile.kind, np.int8), np.asarray(profile.side, np.int8)
+    h_fillet = fillet_size(xy, kind, side_code, spec.side, spec.fillet, spec.h_flank)
     side = "right" if spec.side > 0 else "left"
-    return GearBodySpec(seg.outline, seg.kind, seg.side, seg.z, seg.teeth, seg.r_bore, seg.face_width,
-                        seg.lead_twist, seg.internal, rim=spec.web, far_teeth=spec.far_teeth,
-                        h_flank=seg.h_flank, h_body=seg.h_body, h_fillet=h_fillet,
+    return GearBodySpec(xy, kind, side_code, profile.z, tuple(spec.teeth), spec.r_bore, spec.face_width,
+                        float(np.tan(profile.beta) / profile.r_ref), profile.internal, rim=spec.web,
+                        far_teeth=spec.far_teeth, h_flank=spec.h_flank, h_body=spec.h_body, h_fillet=h_fillet,
                         fillets=tuple(f"fillet_{k}_{side}" for k in spec.loaded) if h_fillet else ())
 
 
@@ -253,7 +244,7 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
     spec
         What was modelled (:class:`ComplianceSpec` or the bevel counterpart): needs ``loaded`` (teeth, in the
         order of ``flanks``), ``depth`` (read depth d, mm; 0 without the near field), ``young``, ``poisson``.
-    mesh : SegmentMesh
+    mesh : BodyMesh
         The body (quadratic tetrahedra, named facet groups).
     support : str
         Facet group held fixed (all displacement components).

@@ -5,8 +5,8 @@ side of the loaded flank (:meth:`fem.compliance.BodyCompliance.root_max`; Calcul
 :mod:`ltca.verify.whole_root`), averaged at the nodes (:func:`fem.readout.nodal_stress`). Near a fillet of radius
 rho the stress falls by about 2 x / rho over a depth x (relative stress gradient of a notch, about 2 / rho:
 Peterson's Stress Concentration Factors, 3rd ed., 2008, ch. 1): on FZG C14 by 20 % between 0.05 and 0.3 mm. The
-straight-edged quadratic tetrahedra (:mod:`fem.solids.spec`) are linear in stress and replace the fillet by chords
-of sagitta h^2 / (8 rho) with kinks of h / rho rad between them. At h = 1.35 mm on a 2 mm fillet (FZG C14's
+straight-edged quadratic tetrahedra (:mod:`fem.solids.mesh_record`) are linear in stress and replace the fillet by
+chords of sagitta h^2 / (8 rho) with kinks of h / rho rad between them. At h = 1.35 mm on a 2 mm fillet (FZG C14's
 flank element size at the default fidelity) the sagitta is 0.11 mm, twice the read depth, and the stress read
 0.05 mm inside varies by +-10 % from element to element along the face. The read fillets are therefore meshed
 at a fraction of their smallest radius of curvature (:func:`fillet_size`; 0.4 at the coarse and default

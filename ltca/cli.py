@@ -83,72 +83,34 @@ def _cmd_validate(a: argparse.Namespace) -> int:
     if a.reference == "analytic" and a.case and _is_bevel(a.case):
         from .verify.bevel_check import run_bevel_validate
         return run_bevel_validate(a.case, a.out, progress=not a.quiet)
+    if a.reference == "analytic":
+        from .verify.validate import run_validate
+        return run_validate(out=a.out, progress=not a.quiet)
     a.case = a.case or str(case_path("fzg_c14"))
-    if a.reference == "calculix" and _is_bevel(a.case):
-        if a.torque is not None and not 0 < a.torque <= 1e5:
-            raise CaseError("--torque", a.torque, "one pinion torque in (0, 1e5] N m")
-        from fem.calculix.run import CcxNotFound
-        from .verify.bevel_calculix import run_bevel_validation
-        from .verify.whole_check import command_line
-        try:
-            return run_bevel_validation(a.case, tuple(a.positions or (0.0, 0.4)), a.out,
-                                        refine=2 if a.refine is None else a.refine, level=a.level,
-                                        h0=1e-3 * (a.band or 250.0), freeze=a.freeze,
-                                        command=command_line(sys.argv[1:]), progress=not a.quiet,
-                                        torque=a.torque, threads=a.threads)
-        except CcxNotFound as exc:
-            print(f"ltca validate: {exc}", file=sys.stderr)
-            return 2
-    if a.reference == "calculix-whole" and _planetary(a.case):
-        from fem.calculix.run import CcxNotFound
-        from .verify.planetary_whole import run_planetary_whole_validation
-        from .verify.whole_check import command_line
-        try:
+    from fem.calculix.run import CcxNotFound
+    try:
+        if a.reference == "calculix" and _is_bevel(a.case):
+            if a.torque is not None and not 0 < a.torque <= 1e5:
+                raise CaseError("--torque", a.torque, "one pinion torque in (0, 1e5] N m")
+            from .verify.bevel_calculix import run_bevel_validation
+            return run_bevel_validation(a.case, tuple(a.positions or (0.0, 0.4)), a.out, level=a.level,
+                                        h0=1e-3 * (a.band or 250.0), progress=not a.quiet, torque=a.torque,
+                                        threads=a.threads)
+        if a.reference == "calculix-whole" and _planetary(a.case):
+            from .verify.planetary_whole import run_planetary_whole_validation
             return run_planetary_whole_validation(a.case, a.positions or [-1.8], a.torque, a.out, band_um=a.band,
-                                                  refine=1 if a.refine is None else a.refine, fidelity=a.fidelity,
-                                                  freeze=a.freeze, command=command_line(sys.argv[1:]),
-                                                  progress=not a.quiet, cache=a.cache)
-        except CcxNotFound as exc:
-            print(f"ltca validate: {exc}", file=sys.stderr)
-            return 2
-    if a.reference == "calculix-whole" and a.merge:
-        from fem.calculix.run import CcxNotFound
-        from .verify.whole_check import command_line
-        from .verify.whole_merge import run_whole_merge
-        try:
-            return run_whole_merge(a.case, a.positions, a.out, a.merge, refine=1 if a.refine is None else a.refine,
-                                   fidelity=a.fidelity or "default", command=command_line(sys.argv[1:]),
-                                   progress=not a.quiet, threads=a.threads,
-                                   body="coarse" if a.coarse_body else "default")
-        except CcxNotFound as exc:
-            print(f"ltca validate: {exc}", file=sys.stderr)
-            return 2
-    if a.reference == "calculix-whole":
-        from fem.calculix.run import CcxNotFound
-        from .verify.whole_check import command_line, run_whole_validation
-        try:
-            return run_whole_validation(a.case, a.positions, a.out, band_um=a.band,
-                                        refine=1 if a.refine is None else a.refine,
-                                        fidelity=a.fidelity or "default", freeze=a.freeze,
-                                        command=command_line(sys.argv[1:]), progress=not a.quiet,
-                                        threads=a.threads, ladder=a.ladder,
+                                                  fidelity=a.fidelity, progress=not a.quiet, cache=a.cache)
+        if a.reference == "calculix-whole":
+            from .verify.whole_check import run_whole_validation
+            return run_whole_validation(a.case, a.positions, a.out, band_um=a.band, fidelity=a.fidelity or "default",
+                                        progress=not a.quiet, threads=a.threads,
                                         body="coarse" if a.coarse_body else "default")
-        except CcxNotFound as exc:
-            print(f"ltca validate: {exc}", file=sys.stderr)
-            return 2
-    if a.reference == "calculix":
-        from fem.calculix.run import CcxNotFound
         from .verify.crosscheck import run_calculix_validation
-        try:
-            return run_calculix_validation(a.case, a.positions, a.out, refine=2 if a.refine is None else a.refine,
-                                           level=a.level,
-                                           band_um=a.band, coarse_body=a.coarse_body, pressure=a.pressure_ladder,
-                                           progress=not a.quiet)
-        except CcxNotFound as exc:
-            print(f"ltca validate: {exc}", file=sys.stderr)
-            return 2
-    from .verify.validate import run_validate
-    return run_validate(out=a.out, progress=not a.quiet)
+        return run_calculix_validation(a.case, a.positions, a.out, level=a.level, band_um=a.band,
+                                       coarse_body=a.coarse_body, progress=not a.quiet)
+    except CcxNotFound as exc:
+        print(f"ltca validate: {exc}", file=sys.stderr)
+        return 2
 
 
 def _cmd_bench(a: argparse.Namespace) -> int:
@@ -339,51 +301,37 @@ def build_parser() -> argparse.ArgumentParser:
     c.set_defaults(func=_cmd_convergence)
 
     v = sub.add_parser("validate", help="run the validation cases: measured vs reference, error, time",
-                       description="Runs the validation cases and prints measured vs reference, error and time.")
+                       description="Runs the validation cases and prints measured vs reference, error and time. "
+                                   "CalculiX's refinement ladders and the frozen references of the tests are "
+                                   "maintainer tooling in the repository (tools/calculix_refs), not installed.")
     v.add_argument("--out", default="out/validate", help="output directory (default: out/validate)")
     v.add_argument("--reference", choices=["analytic", "calculix", "calculix-whole"], default="analytic",
                    help="analytic references and tables (default); calculix: the CalculiX cross-check on our body "
-                        "(slow: 5-15 min per position on 2 cores, plus 30-45 min per pressure ladder); calculix-whole: "
-                        "CalculiX on whole gears with every tooth and their own supports, independent of our body "
-                        "(7-25 min per CalculiX run on one thread of a busy machine, FZG C14)")
+                        "(5-15 min per position on 2 cores), on a [bevel] case CalculiX on both whole members; "
+                        "calculix-whole: CalculiX on whole gears with every tooth and their own supports, independent "
+                        "of our body (7-25 min per CalculiX run on one thread of a busy machine, FZG C14)")
     v.add_argument("--case", default=None,
                    help="case for --reference calculix (default cases/fzg_c14.toml); a [bevel] case with the "
                         "analytic reference runs the bevel checks (elliptic Hertz, light-load limit, V-H table)")
     v.add_argument("--positions", type=float, nargs="+", metavar="DEG",
                    help="pinion roll angles from the pitch point for --reference calculix (default 0 +-4.5 +-9); a "
                         "[bevel] case: pinion angles in mesh cycles from the mean point (default 0 0.4)")
-    v.add_argument("--refine", type=int, default=None,
-                   help="CalculiX contact-band refinements at the first position (its convergence check; default 2, "
-                        "calculix-whole 1)")
     v.add_argument("--level", type=int, default=1,
-                   help="the rung of the CalculiX ladder used at every position (0 coarsest; default 1)")
+                   help="calculix: CalculiX's contact band is --band refined this many times by 1.5 (0 to 4; "
+                        "default 1)")
     v.add_argument("--band", type=float, metavar="UM",
-                   help="CalculiX contact-band element size at rung 0, um (default 3/4 of the Hertz half-width)")
+                   help="CalculiX contact-band element size, um (default 3/4 of the Hertz half-width; a [bevel] case "
+                        "250, a [satellite] case 600)")
     v.add_argument("--coarse-body", action="store_true",
                    help="CalculiX elements of our coarse fidelity away from the contact band (0.45 x module on "
                         "the flank, 1.6 x module in the body; calculix-whole: flanks with a contact line 0.45, other "
                         "teeth 0.75, body 1.6, loaded fillets 0.225 x module, the band's growth x 1.5: a wide face)")
-    v.add_argument("--pressure-ladder", choices=["auto", "all", "none"], default="auto",
-                   help="where CalculiX refines a mid-face window of the narrowest contact three times for a "
-                        "converged peak pressure: auto (positions whose narrowest contact has < 3 band elements per "
-                        "half-width, other than the band ladder's first position), all or none")
     v.add_argument("--fidelity", choices=["coarse", "default", "fine"], default=None,
                    help="our fidelity for --reference calculix-whole (default: default; a [satellite] case: its own)")
     v.add_argument("--torque", type=float, default=None, metavar="NM",
                    help="calculix on a [bevel] case: the pinion torque, N m (default: the case's middle torque); "
                         "calculix-whole on a [satellite] case: the satellite torque, N m (required there)")
     v.add_argument("--cache", default=None, help="calculix-whole on a [satellite] case: our mesh cache directory")
-    v.add_argument("--freeze", metavar="JSON",
-                   help="calculix-whole, and calculix on a [bevel] case: write the CalculiX results as a frozen "
-                        "reference with provenance")
-    v.add_argument("--merge", metavar="JSON",
-                   help="calculix-whole: refine the --positions of this frozen reference by --refine rungs of 1.5 "
-                        "beyond the band each was frozen at and merge them into it, with each position's ladder "
-                        "(the other positions and the first position's ladder kept; ltca.verify.whole_merge)")
-    v.add_argument("--ladder", choices=["finer", "coarser", "both"], default="finer",
-                   help="calculix-whole: the --refine rungs at the first position refine the base contact band and "
-                        "fillets by 1.5 each (finer, default), coarsen them (coarser) or both (both); the first "
-                        "position is frozen at the finest rung")
     v.add_argument("--threads", type=int, default=2,
                    help="calculix-whole and the bevel calculix check: CalculiX threads (OMP_NUM_THREADS, "
                         "CCX_NPROC_EQUATION_SOLVER; default 2)")

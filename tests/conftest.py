@@ -3,6 +3,7 @@ test that changes only gaps (micro-geometry, errors, misalignment, load), as the
 from __future__ import annotations
 
 import dataclasses
+import sys
 from pathlib import Path
 
 import pytest
@@ -10,6 +11,8 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "cases"
 REFERENCE = Path(__file__).resolve().parent / "reference"
+if str(ROOT) not in sys.path:           # the maintainer tooling (tools/, not installed) is imported from the checkout
+    sys.path.append(str(ROOT))
 
 
 @pytest.fixture(scope="session")

@@ -1,6 +1,7 @@
 """CalculiX cross-check: deck writer and readers without ccx; one position against ccx (slow)."""
 from __future__ import annotations
 
+import dataclasses
 import shutil
 
 import numpy as np
@@ -8,7 +9,7 @@ import pytest
 
 from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, _face_numbers, write_deck
 from fem.calculix.run import CCX_INSTALL, CcxNotFound, ccx_path
-from fem.solids import ContactLine, SegmentMesh, facets_near_lines
+from fem.solids import ContactLine, BodyMesh, facets_near_lines
 
 needs_ccx = pytest.mark.skipif(shutil.which("ccx") is None, reason=f"CalculiX missing: {CCX_INSTALL}")
 
@@ -44,7 +45,7 @@ def test_face_numbers_follow_calculix_c3d10():
 
 def test_facets_near_lines_selects_the_band():
     nodes, tets = _two_tets()
-    mesh = SegmentMesh(nodes, tets, {"f": np.array([[0, 1, 2, 5, 6, 7], [1, 4, 3, 0, 0, 0]])}, "x")
+    mesh = BodyMesh(nodes, tets, {"f": np.array([[0, 1, 2, 5, 6, 7], [1, 4, 3, 0, 0, 0]])}, "x")
     line = ContactLine(np.array([0.0, 0.0, 0.0]), np.array([0.5, 0.0, 0.0]), np.array([0.0, 0.0, 1.0]))
     near = facets_near_lines(mesh, ("f",), [line], 0.5)
     assert len(near) == 1 and near[0, 0] == 0
@@ -53,7 +54,7 @@ def test_facets_near_lines_selects_the_band():
 def test_deck_has_rigid_body_contact_and_moment(tmp_path):
     nodes, tets = _two_tets()
     tri = np.array([[0, 1, 2, 4, 5, 6]])
-    mesh = SegmentMesh(nodes, tets, {"bore": tri, "flank": tri}, "x")
+    mesh = BodyMesh(nodes, tets, {"bore": tri, "flank": tri}, "x")
     frame = np.eye(4)
     frame[:3, 3] = [0, 10, 0]
     deck = CcxDeck(young=206000.0, poisson=0.3, fixed=("gear", "bore"), driven=("pinion", "bore"), moment=-2e5,
@@ -125,8 +126,8 @@ def test_narrowest_half_width_is_the_hertz_width(fzg_lm):
 def test_focus_refines_only_its_window_of_the_contact_line(fzg_lm):
     """The pressure ladder's focus zone: elements of the focus size in the mid-face window of the contact
     line, the band's size elsewhere along the same line."""
-    from fem.compliance import segment_spec
-    from fem.solids import build_refined_segment
+    from fem.compliance import body_spec
+    from fem.solids import build_refined_body
     from geometry.pair import rotation_z
     from ltca.verify.calculix import Focus, _window, contact_lines
     model = fzg_lm.model
@@ -139,8 +140,8 @@ def test_focus_refines_only_its_window_of_the_contact_line(fzg_lm):
     assert np.allclose(sorted([win.p0[2], win.p1[2]]), [-1.0, 1.0])
     assert np.allclose(np.cross(win.p1 - win.p0, line.p1 - line.p0), 0.0, atol=1e-9)   # a piece of the line
     p1 = model.pinion
-    spec = segment_spec(p1, fzg_lm.body1.spec.teeth, model.r_bore1, model.face_width, 0.45 * 4.5, 1.6 * 4.5)
-    mesh = build_refined_segment(spec, [line], 0.3, 0.4, 0.4, 0.8, focus=((win, focus.h, focus.half_band),))
+    spec = body_spec(p1, dataclasses.replace(fzg_lm.body1.spec, h_flank=0.45 * 4.5, h_body=1.6 * 4.5, fillet=0.0))
+    mesh = build_refined_body(spec, [line], 0.3, 0.4, 0.4, 0.8, focus=((win, focus.h, focus.half_band),))
     tri = mesh.facets["flank_0_right"]
     X = mesh.nodes[tri[:, :3]]
     c = X.mean(axis=1)

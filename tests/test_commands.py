@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-from conftest import CASES
+from conftest import CASES, ROOT
 
 
 def test_convergence_ladder_reports_time_and_error(tmp_path, capsys):
@@ -52,3 +52,53 @@ def test_validate_command_passes(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "pitch point p0 with near field" in out
     assert (tmp_path / "validation.csv").exists()
+
+
+@pytest.mark.parametrize("option", ["--freeze", "--merge", "--ladder", "--refine", "--pressure-ladder"])
+def test_validate_leaves_ladders_and_frozen_references_to_the_tooling(option, capsys):
+    """The options of CalculiX's ladders and of the frozen references are not ``ltca validate``'s (exit 2, argparse);
+    the maintainer tooling's scripts have them."""
+    from ltca.cli import main
+    with pytest.raises(SystemExit) as exc:
+        main(["validate", "--reference", "calculix-whole", option, "1"])
+    assert exc.value.code == 2 and option in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("args,field", [(["--reference", "calculix", "--level", "9"], "--level"),
+                                        (["--reference", "calculix", "--case", "cases/spiral_bevel_cao2008.toml",
+                                          "--level", "9"], "--level"),
+                                        (["--reference", "calculix", "--case", "cases/spiral_bevel_cao2008.toml",
+                                          "--positions", "3"], "--positions")])
+def test_calculix_checks_name_a_bad_argument_before_ccx(args, field, tmp_path, capsys, monkeypatch):
+    """A bad argument of the one-run CalculiX checks exits 2 naming the option, whether or not ccx is installed."""
+    from ltca.cli import main
+    monkeypatch.chdir(ROOT)
+    assert main(["validate", *args, "--out", str(tmp_path), "--quiet"]) == 2
+    assert field in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("script", ["freeze_whole", "merge_whole", "freeze_bevel", "recompare_bevel",
+                                    "freeze_planetary", "ladder_cylindrical"])
+def test_tooling_scripts_run_from_the_checkout(script):
+    """Every script of tools/calculix_refs runs as ``python3 -m tools.calculix_refs.<script>`` from the repository
+    root: ``--help`` exits 0 (recompare_bevel without its FILE NOTE: 2, with its usage)."""
+    import subprocess
+    import sys
+    proc = subprocess.run([sys.executable, "-m", f"tools.calculix_refs.{script}", "--help"], cwd=ROOT,
+                          capture_output=True, text=True, timeout=120)
+    if script == "recompare_bevel":
+        assert proc.returncode == 2 and "FILE NOTE" in proc.stderr
+    else:
+        assert proc.returncode == 0 and f"tools.calculix_refs.{script}" in proc.stdout, proc.stderr
+
+
+def test_freeze_names_a_bad_argument_before_ccx(tmp_path, capsys):
+    """The freeze scripts check their arguments before looking for ccx: exit 2 with the option named."""
+    from tools.calculix_refs import freeze_bevel, freeze_whole
+    assert freeze_whole.main(["--case", str(CASES / "fzg_c14.toml"), "--positions", "40", "--out", str(tmp_path)]) == 2
+    assert "--positions" in capsys.readouterr().err
+    assert freeze_whole.main(["--case", str(CASES / "fzg_c14.toml"), "--ladder", "finer", "--refine", "5",
+                              "--out", str(tmp_path)]) == 2
+    assert "--refine" in capsys.readouterr().err
+    assert freeze_bevel.main(["--level", "2", "--refine", "1", "--out", str(tmp_path)]) == 2
+    assert "--refine" in capsys.readouterr().err

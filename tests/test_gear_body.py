@@ -36,7 +36,7 @@ def _spec(profile, r_support, b, **kw):
 
 def _section_area(profile, far_teeth: str) -> float:
     """Area inside the toothed boundary: every tooth's outline, or three teeth closed by the root circle."""
-    from fem.solids.section import rot2
+    from fem.solids.planar import rot2
     xy = np.asarray(profile.xy)
     pitch = 2 * np.pi / profile.z
     if far_teeth == "full":
@@ -77,7 +77,7 @@ def test_webbed_body_volume_counts_each_region_at_its_width(fzg_model):
 def test_helical_flank_nodes_lie_on_the_generated_helicoid():
     """Corner nodes of a flank facet, turned back by the lead twist, land on the transverse outline (< 1 um)."""
     from fem.solids import build_gear_body
-    from fem.solids.section import rot2
+    from fem.solids.planar import rot2
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
     p = build_model(load_case(CASES / "helical_c14.toml")).pinion
@@ -85,7 +85,7 @@ def test_helical_flank_nodes_lie_on_the_generated_helicoid():
     mesh = build_gear_body(spec)
     v = mesh.nodes[np.unique(mesh.facets["flank_0_right"][:, :3])]
     back = np.stack([rot2(q[None, :2], -spec.lead_twist * q[2])[0] for q in v])
-    from fem.solids.segment_gmsh import polyline_distance
+    from fem.solids.planar import polyline_distance
     dense = np.asarray(p.xy)
     d = np.array([polyline_distance(q, dense) for q in back])
     print(f"helical flank vertices off the generated outline by at most {1e3 * d.max():.3f} um")

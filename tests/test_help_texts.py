@@ -33,3 +33,13 @@ def test_no_seed_jargon_and_calculix_times_agree():
     assert f"({readme} min per CalculiX run" in flat
     # the check on our body
     assert "5-15 min per position on 2 cores" in README and "5-15 min per position on 2 cores" in flat
+
+
+def test_every_option_of_the_tooling_has_help():
+    """The scripts of tools/calculix_refs (maintainer tooling, not installed) document every option too."""
+    import importlib
+    missing = []
+    for script in ("freeze_whole", "merge_whole", "freeze_bevel", "freeze_planetary", "ladder_cylindrical"):
+        parser = importlib.import_module(f"tools.calculix_refs.{script}").build_parser()
+        missing += [f"{script} {a.option_strings or a.dest}" for a in parser._actions if a.help is None]
+    assert not missing, missing

@@ -1,4 +1,4 @@
-"""The package layout: no import circles, and imports run one way, geometry <- fem <- ltca.
+"""The package layout: no import circles, and imports run one way, geometry <- fem <- ltca <- tools.
 
 Every .py file under geometry/, fem/ and ltca/ is parsed with ``ast``; every import counts (module level,
 inside functions, under ``TYPE_CHECKING``), relative imports resolved. ``from p import name`` is an edge
@@ -7,17 +7,19 @@ to the module ``p.name`` when that is one of ours, else to ``p``. A failure prin
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-PACKAGES = ("geometry", "fem", "ltca")
-ORDER = {"geometry": 0, "fem": 1, "ltca": 2}          # a package may import only packages of lower or equal rank
+PACKAGES = ("geometry", "fem", "ltca")                # installed
+TOOLS = "tools"                                       # maintainer tooling in the repository, not installed
+ORDER = {"geometry": 0, "fem": 1, "ltca": 2, TOOLS: 3}   # a package may import only packages of lower or equal rank
 
 
-def _modules(root: Path = ROOT) -> dict[str, tuple[Path, bool]]:
+def _modules(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> dict[str, tuple[Path, bool]]:
     """Module name -> (file, is a package's __init__)."""
     out = {}
-    for pkg in PACKAGES:
+    for pkg in packages:
         for path in sorted((root / pkg).rglob("*.py")):
             parts = path.relative_to(root).with_suffix("").parts
             is_pkg = parts[-1] == "__init__"
@@ -35,9 +37,9 @@ def _resolve(name: str, modules) -> str | None:
     return None
 
 
-def import_graph(root: Path = ROOT) -> dict[str, dict[str, int]]:
-    """Module -> {imported module of ours: line of the first such import}."""
-    modules = _modules(root)
+def import_graph(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> dict[str, dict[str, int]]:
+    """Module -> {imported module of ours: line of the first such import} over ``packages``."""
+    modules = _modules(root, packages)
     graph: dict[str, dict[str, int]] = {}
     for mod, (path, is_pkg) in modules.items():
         edges: dict[str, int] = {}
@@ -249,3 +251,23 @@ def test_library_modules_neither_print_nor_pick_a_backend():
             backend.append(mod)
     assert not printing, "print() in library modules:\n" + "\n".join(printing)
     assert not backend, f"matplotlib.use() outside ltca.cli: {backend}"
+
+
+def test_the_tooling_imports_the_package_never_the_reverse():
+    """tools/ (not installed) may import geometry, fem and ltca; no installed module imports tools, and the tooling
+    makes no import circle."""
+    graph = import_graph(packages=PACKAGES + (TOOLS,))
+    assert any(m.startswith(TOOLS + ".") for m in graph), "the scan must see tools/"
+    bad = against_the_direction(graph)
+    assert not bad, "imports against geometry <- fem <- ltca <- tools:\n" + "\n".join(bad)
+    cycles = find_cycles(graph)
+    assert not cycles, "import circles:\n" + _show(cycles)
+
+
+def test_the_tooling_is_not_installed():
+    """The package discovery (setup.py: geometry*, fem*, ltca* and the data folders) does not pick up tools/ (it
+    stays in the repository)."""
+    text = (ROOT / "setup.py").read_text()
+    include = re.search(r"find_packages\(include=\[(.*?)\]\)", text).group(1)
+    patterns = [x.strip().strip('"') for x in include.split(",")]
+    assert patterns and not any(pattern.split("*")[0].split(".")[0] == TOOLS for pattern in patterns)

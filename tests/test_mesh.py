@@ -1,4 +1,5 @@
-"""Tests of fem.solids: gmsh tooth segments with graded quadratic tetrahedra."""
+"""Tests of the tooth-segment mesher (tools.segment_mesh) and the shared gmsh meshing (fem.solids.gmsh_mesh):
+graded quadratic tetrahedra."""
 from __future__ import annotations
 
 import time
@@ -6,7 +7,8 @@ import time
 import numpy as np
 import pytest
 
-from fem.solids import SegmentMesh, SegmentSpec, build_segment, gmsh_session
+from fem.solids import BodyMesh, gmsh_session
+from tools.segment_mesh import SegmentSpec, build_segment
 
 
 # ----------------------------------------------------------------------------------------------
@@ -156,7 +158,7 @@ def spur(outline):
 
 def test_spur_volume_jacobian_node_order(spur, outline):
     spec, mesh = spur
-    assert isinstance(mesh, SegmentMesh) and mesh.tets.shape[1] == 10
+    assert isinstance(mesh, BodyMesh) and mesh.tets.shape[1] == 10
     vol = corner_volumes(mesh)
     assert vol.min() > 0
     exact = section_area(outline[0], Z, TEETH, R_BORE) * B
@@ -239,7 +241,7 @@ def test_internal_segment_and_cache(tmp_path):
         v = mesh.nodes[mesh.facets[f"tip_{k}"][:, :3]]
         n = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0])
         assert np.all(np.einsum("ij,ij->i", n[:, :2], v.mean(axis=1)[:, :2]) < 0)
-    import fem.solids.segment as segment_module
+    import tools.segment_mesh as segment_module
 
     def no_meshing(*args, **kwargs):
         raise AssertionError("a cache hit must not mesh again")

@@ -1,7 +1,8 @@
 """Ours against frozen whole-gear CalculiX references, without ccx at test time.
 
-The references ``tests/reference/*_calculix_whole.json`` are computed by ``ltca validate --reference
-calculix-whole ... --freeze FILE`` (each file stores the command, the CalculiX version, the deck hashes, the
+The references ``tests/reference/*_calculix_whole.json`` are computed by ``python3 -m
+tools.calculix_refs.freeze_whole ... FILE`` and refined by ``tools.calculix_refs.merge_whole`` (the repository's
+maintainer tooling, ``tools/calculix_refs/README.md``; each file stores the command that made it, the CalculiX version, the deck hashes, the
 mesh sizes, nodes, elements, wall times and the refinement ladder that checks their convergence): whole gears
 with every tooth built apart from our body (``fem.solids.full_gear``), the gear's bore fixed, the pinion's bore
 on a rigid body turning under the torque, penalty contact. The figures themselves are in those files.
@@ -37,7 +38,12 @@ import numpy as np
 import pytest
 
 from conftest import ROOT
-from ltca.verify.whole_merge import ladder_key
+from tools.calculix_refs.merge_whole import ladder_key
+
+#: the command a frozen whole-gear file stores is the one that made it: the maintainer tooling's, or ``ltca validate``'s
+#: with ``--freeze`` / ``--merge`` for the files made with those options
+FREEZE_COMMANDS = ("python3 -m tools.calculix_refs.freeze_whole", "ltca validate --reference calculix-whole")
+MERGE_COMMANDS = ("python3 -m tools.calculix_refs.merge_whole", "ltca validate --reference calculix-whole")
 
 REFERENCES = sorted((Path(__file__).resolve().parent / "reference").glob("*_calculix_whole.json"))
 BOUNDS = {"te": 0.02, "stiffness": 0.02, "share": 0.03, "flank_pressure": 0.05, "root_pinion": 0.05,
@@ -109,16 +115,16 @@ def _rung_value(ref: dict, quantity: str):
 
 
 def _first_key(rec: dict) -> str:
-    """The ladder key (:func:`ltca.verify.whole_merge.ladder_key`) of the file's first position, the one
+    """The ladder key (:func:`tools.calculix_refs.merge_whole.ladder_key`) of the file's first position, the one
     ``convergence`` refines."""
     return ladder_key(rec["convergence"][-1]["roll_deg"])
 
 
 def _joined_ladder(rec: dict, key: str) -> list[dict] | None:
-    """The refinement ladder of the position ``key`` (:func:`ltca.verify.whole_merge.ladder_key`), coarsest first,
-    or None without one: the first position's is ``convergence``, continued by its rungs refined by ``--merge``
+    """The refinement ladder of the position ``key`` (:func:`tools.calculix_refs.merge_whole.ladder_key`), coarsest first,
+    or None without one: the first position's is ``convergence``, continued by its rungs refined by ``merge_whole``
     (``ladders``, whose first entry is the frozen finest rung of ``convergence``); another position refined by
-    ``--merge`` has its own."""
+    ``merge_whole`` has its own."""
     first, merged = rec["convergence"], rec.get("ladders", {}).get(key)
     if _first_key(rec) != key:
         return merged
@@ -138,9 +144,9 @@ def converged_estimate(rec: dict, ref: dict, quantity: str) -> tuple[float | Non
     """CalculiX's converged estimate of a quantity at a position and its grid convergence index.
 
     Where the position's last three rungs are refined by the same ratio and converge in the asymptotic range
-    (:func:`ltca.verify.calculix.converged_estimate`), the Richardson extrapolation with the observed order and Roache's
+    (:func:`tools.calculix_refs.convergence.converged_estimate`), the Richardson extrapolation with the observed order and Roache's
     GCI of the finest rung; otherwise the finest rung and None."""
-    from ltca.verify.calculix import converged_estimate as estimate
+    from tools.calculix_refs.convergence import converged_estimate as estimate
     ladder = _position_ladder(rec, ref)
     if _rung_value(ref, quantity) is None:
         return None, None
@@ -196,7 +202,7 @@ def _ladder(path: Path, key: str | None) -> list[dict]:
 
 
 def _ladder_note(rec: dict, ref: dict, quantity: str) -> str:
-    """The CalculiX ladder of a quantity at a position refined by ``--merge`` (``ladders``), for an xfail reason."""
+    """The CalculiX ladder of a quantity at a position refined by ``merge_whole`` (``ladders``), for an xfail reason."""
     ladder = rec.get("ladders", {}).get(ladder_key(ref["roll_deg"]))
     if not ladder or quantity != "flank_pressure":
         return ""
@@ -230,7 +236,7 @@ def _converged_params():
 @pytest.mark.parametrize("path,key", _converged_params())
 def test_reference_te_is_converged(path, key):
     """The CalculiX TE changes by less than 0.5 % over the last contact-band refinement of the ladder (the first
-    position's, and each position's refined by ``--merge``)."""
+    position's, and each position's refined by ``merge_whole``)."""
     assert abs(_te_refinement(path, key)) < TE_CONVERGED
 
 
@@ -241,7 +247,7 @@ def test_reference_records_its_provenance(path):
     case = load_case(ROOT / rec["case"])
     face_width = min(case.pinion.face_width, case.gear.face_width)     # as the model's (no compliance needed)
     assert "Version" in rec["calculix_version"]
-    assert rec["command"].startswith("ltca validate --reference calculix-whole")
+    assert rec["command"].startswith(FREEZE_COMMANDS)
     assert len(rec["convergence"]) >= 2, "a frozen reference needs its contact-band refinement"
     assert set(rec.get("unconverged", {})) <= set(QUANTITIES)
     for p in rec["positions"]:
@@ -253,13 +259,13 @@ def test_reference_records_its_provenance(path):
                 assert member["max"] == max(member["per_tooth"].values()) > 0
                 assert abs(member["at"]["z_mm"]) <= 0.45 * face_width + 1e-9
                 assert member["surface"]["max"] > 0
-    for key, ladder in rec.get("ladders", {}).items():        # positions refined by --merge: coarsest first
+    for key, ladder in rec.get("ladders", {}).items():        # positions refined by merge_whole: coarsest first
         p = next(p for p in rec["positions"] if ladder_key(p["roll_deg"]) == key)
         assert len(ladder) >= 2 and all(e["roll_deg"] == p["roll_deg"] and len(e["deck_sha256"]) == 64 for e in ladder)
         assert all(a["h_contact_um"] > b["h_contact_um"] for a, b in zip(ladder, ladder[1:]))
         assert {k: v for k, v in p.items() if k != "ours_at_freeze"} == ladder[-1]
     for m in rec.get("merged", []):
-        assert m["command"].startswith("ltca validate --reference calculix-whole") and "--merge" in m["command"]
+        assert m["command"].startswith(MERGE_COMMANDS) and ("--merge" in m["command"] or "merge_whole" in m["command"])
         assert "Version" in m["calculix_version"] and set(m["positions"]) <= set(rec["ladders"])
 
 
@@ -268,7 +274,7 @@ def test_converged_estimate_by_hand():
     / f2 / (1.5^2 - 1)); no estimate where the ladder does not converge; the -9 deg flank peak of the FZG
     reference by hand: 1465.106 / 1266.462 / 1206.901 MPa, p = ln(198.644 / 59.561) / ln 1.5 = 2.971,
     1206.901 - 59.561 / (1.5^p - 1) = 1181.39 MPa."""
-    from ltca.verify.calculix import grid_convergence_index, richardson
+    from tools.calculix_refs.convergence import grid_convergence_index, richardson
     f = [1 + h * h for h in (2.25, 1.5, 1.0)]
     assert richardson(f, 1.5) == pytest.approx((1.0, 2.0), rel=1e-12)
     assert grid_convergence_index(f, 1.5) == pytest.approx(1.25 * 1.25 / 2 / 1.25, rel=1e-12)

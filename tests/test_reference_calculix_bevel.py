@@ -1,7 +1,8 @@
 """Our bevel LTCA against the frozen CalculiX reference of the spiral bevel pair, without ccx at test time.
 
-``tests/reference/spiral_bevel_calculix*.json`` are computed by ``ltca validate --reference calculix
---case cases/spiral_bevel_cao2008.toml [--torque NM] --threads 1 --freeze FILE`` at the middle torque, 175 N m
+``tests/reference/spiral_bevel_calculix*.json`` are computed by ``python3 -m tools.calculix_refs.freeze_bevel FILE
+--case cases/spiral_bevel_cao2008.toml [--torque NM] --threads 1`` (``tools/calculix_refs/README.md``) at the
+middle torque, 175 N m
 (command, CalculiX version, date, mesh sizes, deck hashes and the contact-zone refinement stored in each): whole
 members built apart from our body (gmsh OCC solids, every tooth), pinion bore on a rigid body under the torque,
 gear back face fixed, penalty contact, both members held at the case's [mounting].  Bounds: loaded TE
@@ -9,8 +10,8 @@ gear back face fixed, penalty contact, both members held at the case's [mounting
 
 Positions: phi1 = 0 (two pairs; the contact zone refined twice, 133 / 89 / 59 um, and the interior peak compared
 with CalculiX's converged estimate where the ladder allows one, else with its finest rung) and phi1 = 0.4 cycle.
-``recompared`` in a file holds our figures on the current bodies; ``python3 -m ltca.verify.bevel_calculix FILE
-NOTE`` re-evaluates ours on the frozen rows. At 175 N m no position of the cycle has a single pair in contact
+``recompared`` in a file holds our figures on the current bodies; ``python3 -m tools.calculix_refs.recompare_bevel
+FILE NOTE`` re-evaluates ours on the frozen rows. At 175 N m no position of the cycle has a single pair in contact
 (our largest pair share is about 0.75), so the share check always compares two pairs.
 """
 from __future__ import annotations
@@ -52,7 +53,8 @@ def _ours(name: str, fraction: float) -> dict:
 def test_reference_records_its_provenance(name):
     rec = _rec(name)
     assert "Version" in rec["calculix_version"] and rec["date"]
-    assert rec["command"].startswith("ltca validate --reference calculix")
+    assert rec["command"].startswith(("python3 -m tools.calculix_refs.freeze_bevel",      # the command that made it
+                                      "ltca validate --reference calculix"))
     assert rec["bounds"] == BOUNDS
     assert len(rec["refinement"]) >= 3, "a frozen reference needs its two-level contact refinement"
     for r in rec["rows"]:
@@ -66,8 +68,8 @@ def test_reference_records_its_provenance(name):
 def converged_pressure(name: str, index: int) -> float:
     """CalculiX's interior peak at a row: at the ladder's position, where its last three rungs (refined by one ratio)
     converge in the asymptotic range, the Richardson extrapolation with the observed order
-    (:func:`ltca.verify.calculix.converged_estimate`, as the cylindrical references); otherwise the finest rung."""
-    from ltca.verify.calculix import converged_estimate
+    (:func:`tools.calculix_refs.convergence.converged_estimate`, as the cylindrical references); otherwise the finest rung."""
+    from tools.calculix_refs.convergence import converged_estimate
     rec = _rec(name)
     row, ladder = rec["rows"][index], rec["refinement"]
     if index != 0:

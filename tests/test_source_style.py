@@ -1,8 +1,8 @@
 """The source says what, not when: no product module or test cites an issue, a source-file seed or a session.
 
 A docstring or comment cites a paper by author, year and equation, never a tracker or a work log; a test is named
-after what it checks. Scanned: every ``.py`` file under ``geometry/``, ``fem/``, ``ltca/`` and ``tests/`` (whole
-text: docstrings, comments and messages alike), and the test file and function names. Runs in milliseconds.
+after what it checks. Scanned: every ``.py`` file under ``geometry/``, ``fem/``, ``ltca/``, ``tests/`` and ``tools/``
+(whole text: docstrings, comments and messages alike), and the test file and function names. Runs in milliseconds.
 """
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("geometry", "fem", "ltca", "tests")
+PACKAGES = ("geometry", "fem", "ltca", "tests", "tools")
 
 #: what a citation of the project's history looks like, matched on the lower-cased text, with a name for the failure
 #: message and the characters that must not precede a match (a word boundary, and for "#NN" no HTML entity "&#13;",

@@ -77,8 +77,8 @@ def test_helical_full_gear_is_lofted_on_the_helicoid():
     """Helical C14's pinion (beta 20 deg, b 40 mm): every tooth labelled, the flank vertices of tooth 0 within
     1 um of the transverse outline turned by tan(beta) / r z (measured 0.3 um), over the whole face."""
     from fem.solids.full_gear import FullGearSpec, build_full_gear
-    from fem.solids.section import rot2
-    from fem.solids.segment_gmsh import polyline_distance
+    from fem.solids.planar import rot2
+    from fem.solids.planar import polyline_distance
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
     from ltca.verify.whole_gear import twist
@@ -154,7 +154,7 @@ def test_whole_gear_calculix_pitch_point_bore20(tmp_path):
     CalculiX."""
     from ltca.verify.whole_check import run_whole_validation
     import json
-    rc = run_whole_validation(str(CASES / "crosscheck" / "fzg_c14_bore20.toml"), [0.0], str(tmp_path), refine=0,
+    rc = run_whole_validation(str(CASES / "crosscheck" / "fzg_c14_bore20.toml"), [0.0], str(tmp_path),
                               progress=False)
     row = json.loads((tmp_path / "whole_gear.json").read_text())["rows"][0]
     assert abs(row["te_diff_pct"]) < 3.0 and row["share_diff"] < 0.03 and abs(row["k_diff_pct"]) < 3.0, row
@@ -174,7 +174,7 @@ def test_coarse_body_and_unconverged_readouts():
     names a read-out its ladder moves by more than 5 %, with the numbers."""
     from types import SimpleNamespace
 
-    from ltca.verify.whole_check import unconverged
+    from tools.calculix_refs.freeze_whole import unconverged
     from ltca.verify.whole_gear import whole_settings
     d, c = whole_settings(0.118, 4.23, 150.0, threads=1), whole_settings(0.118, 4.23, 150.0, threads=1, body="coarse")
     assert (c.h_contact, c.half_band, c.penalty, c.halo) == (d.h_contact, d.half_band, d.penalty, d.halo)

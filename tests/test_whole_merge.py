@@ -1,4 +1,4 @@
-"""``ltca validate --reference calculix-whole --merge FILE``: refining chosen positions of a frozen whole-gear
+"""``python3 -m tools.calculix_refs.merge_whole FILE``: refining chosen positions of a frozen whole-gear
 reference keeps the rest of the file, without ccx (CalculiX is replaced by a stand-in)."""
 from __future__ import annotations
 
@@ -15,21 +15,21 @@ FROZEN = ROOT / "tests" / "reference" / "fzg_c14_calculix_whole.json"
 
 def test_merge_argument_errors_before_ccx(tmp_path, capsys):
     """A position the file does not hold, or a missing file, exits 2 with the option named."""
-    from ltca.cli import main
+    from tools.calculix_refs.merge_whole import main
     ref = tmp_path / "ref.json"
     shutil.copy(FROZEN, ref)
-    base = ["validate", "--reference", "calculix-whole", "--case", str(CASES / "fzg_c14.toml"), "--out", str(tmp_path)]
-    assert main(base + ["--positions", "-3", "--merge", str(ref)]) == 2 and "--positions" in capsys.readouterr().err
-    assert main(base + ["--positions", "-9", "--merge", str(tmp_path / "none.json")]) == 2
-    assert "--merge" in capsys.readouterr().err
+    base = ["--case", str(CASES / "fzg_c14.toml"), "--out", str(tmp_path)]
+    assert main([str(ref)] + base + ["--positions", "-3"]) == 2 and "--positions" in capsys.readouterr().err
+    assert main([str(tmp_path / "none.json")] + base + ["--positions", "-9"]) == 2
+    assert "FILE" in capsys.readouterr().err
     assert ref.read_bytes() == FROZEN.read_bytes()
 
 
 def test_rung_settings_and_ladder_change():
     """A merged rung scales the frozen band, its half-width beyond the band, the penalty and the fillets as the
-    ``--freeze`` ladder does (the 0 deg 100 um rung of FZG C14 is the -9 deg 150 um run refined once)."""
+    freeze's ladder does (the 0 deg 100 um rung of FZG C14 is the -9 deg 150 um run refined once)."""
     from ltca.verify.whole_gear import whole_settings
-    from ltca.verify.whole_merge import ladder_change, ladder_key, rung_settings
+    from tools.calculix_refs.merge_whole import ladder_change, ladder_key, rung_settings
     rec = json.loads(FROZEN.read_text())
     at_150 = next(p for p in rec["convergence"] if round(p["h_contact_um"]) == 150)
     at_100 = next(p for p in rec["convergence"] if round(p["h_contact_um"]) == 100)
@@ -48,7 +48,7 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     extends its ladder (the frozen run before it); the first position's ladder, the other positions and the original
     command stay."""
     import fem.calculix.run
-    from ltca.verify import whole_merge
+    from tools.calculix_refs import merge_whole as whole_merge
     from ltca.verify.whole_gear import WholeResult
 
     def fake(lm, roll, torque, st, workdir, say=print):
@@ -65,7 +65,7 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     shutil.copy(FROZEN, ref)
     before = json.loads(ref.read_text())
     assert whole_merge.run_whole_merge(str(CASES / "fzg_c14.toml"), [-4.5], str(tmp_path), str(ref), threads=1,
-                                       command="ltca validate --reference calculix-whole --merge x",
+                                       command="python3 -m tools.calculix_refs.merge_whole x",
                                        progress=False) == 0
     after = json.loads(ref.read_text())
     assert after["convergence"] == before["convergence"] and after["command"] == before["command"]
@@ -83,3 +83,41 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     assert {k: v for k, v in new.items() if k != "ours_at_freeze"} == ladder[-1]
     assert set(new["ours_at_freeze"]) == {"te", "stiffness", "share", "flank_pressure", "root_pinion", "root_gear"}
     assert after["merged"][-1]["positions"] == ["-4.5"] and after["merged"][-1]["refine"] == 1
+
+
+def test_the_check_runs_once_per_position_and_the_freeze_adds_its_ladder(tmp_path, monkeypatch, capsys):
+    """``ltca validate --reference calculix-whole`` runs CalculiX once per position at the base band; the freeze
+    script adds the ladder at the first position (``--refine 1 --ladder both``: 1.5, 1, 1/1.5 of the band) and
+    writes a reference that records its command, the ladder and our figures (CalculiX replaced by a stand-in)."""
+    import fem.calculix.run
+    from ltca.verify import whole_check
+    from ltca.verify.whole_gear import WholeResult
+    from tools.calculix_refs import freeze_whole
+    runs = []
+
+    def fake(lm, roll, torque, st, workdir, say=print):
+        runs.append((roll, round(1e3 * st.h_contact, 3)))
+        info = {"nodes": 2, "elements": 1, "nodes_pinion": 1, "nodes_gear": 1, "h_contact_mm": st.h_contact,
+                "settings": dataclasses.asdict(st), "ccx_wall": 1.0, "mesh_wall": 1.0, "deck_sha256": "a" * 64,
+                "p_flank": 1500.0}
+        root = {m: {"max": 230.0, "per_tooth": {"0": 230.0}, "at": {"z_mm": 0.0}} for m in ("pinion", "gear")}
+        return WholeResult(roll, 117.5, {0: 5912.0}, 14.7, 1500.0, 2.0, info, root)
+    monkeypatch.setattr(fem.calculix.run, "ccx_path", lambda: "ccx")
+    monkeypatch.setattr(whole_check, "solve_whole", fake)
+    monkeypatch.setattr(freeze_whole, "solve_whole", fake)
+    monkeypatch.setattr(freeze_whole, "ccx_version", lambda: "This is Version 0")
+    case = str(CASES / "fzg_c14.toml")
+    whole_check.run_whole_validation(case, [0.0, -9.0], str(tmp_path / "check"), band_um=150.0, progress=False)
+    assert runs == [(0.0, 150.0), (-9.0, 150.0)]
+    assert (tmp_path / "check" / "whole_gear.csv").read_text().count("\n") == 3
+    runs.clear()
+    ref = tmp_path / "ref.json"
+    assert freeze_whole.main([str(ref), "--case", case, "--positions", "0", "-9", "--band", "150", "--refine", "1",
+                              "--ladder", "both", "--out", str(tmp_path / "freeze"), "--quiet"]) in (0, 1)
+    assert runs == [(0.0, 150.0), (-9.0, 150.0), (0.0, 225.0), (0.0, 150.0), (0.0, 100.0), (-9.0, 150.0)]
+    rec = json.loads(ref.read_text())
+    assert rec["command"].startswith("python3 -m tools.calculix_refs.freeze_whole " + str(ref))
+    assert [e["h_contact_um"] for e in rec["convergence"]] == pytest.approx([225.0, 150.0, 100.0])
+    assert [p["h_contact_um"] for p in rec["positions"]] == pytest.approx([100.0, 150.0])
+    assert set(rec["positions"][0]["ours_at_freeze"]) == {"te", "stiffness", "share", "flank_pressure",
+                                                          "root_pinion", "root_gear"}

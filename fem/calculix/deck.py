@@ -1,6 +1,6 @@
-"""CalculiX input decks of positioned tooth segments in contact.
+"""CalculiX input decks of positioned gear bodies in contact.
 
-A deck holds several bodies (``SegmentMesh`` placed in the world by a 4x4 frame), written as C3D10
+A deck holds several bodies (``BodyMesh`` placed in the world by a 4x4 frame), written as C3D10
 elements of one linear-elastic material. One body's named facet group is fixed; another body's facet
 group is tied by ``*RIGID BODY`` to a reference node on an axis that may only rotate about that axis
 (the other five rigid-body dofs are held) and loaded by a moment about it. Frictionless
@@ -8,7 +8,8 @@ surface-to-surface penalty contact (``*CONTACT PAIR, TYPE=SURFACE TO SURFACE``, 
 pressure-overclosure law) joins named slave facet groups to master groups (CalculiX 2.20 keywords;
 G. Dhondt, *CalculiX CrunchiX User's Manual*).
 
-The segments with contact-line refinement are meshed by :mod:`fem.solids.refinement`, ``ccx`` is run and
+The bodies (with contact-line refinement: :mod:`fem.solids.refinement`; whole gears: :mod:`fem.solids.full_gear`,
+:mod:`fem.solids.bevel_occ`) are meshed by :mod:`fem.solids`, ``ccx`` is run and
 its results read back by :mod:`fem.calculix.run`.
 
 Units: mm, N, MPa, rad. Point arrays are (n, 3).
@@ -21,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..solids.spec import SegmentMesh
+from ..solids.mesh_record import BodyMesh
 
 __all__ = ["DeckBody", "ContactPairSpec", "CcxDeck", "write_deck"]
 
@@ -33,7 +34,7 @@ _FACE_OF_MISSING_VERTEX = np.array([3, 4, 2, 1])   # missing 0 -> S3 (2-4-3), 1 
 class DeckBody:
     """One meshed body placed in the world: ``world = frame[:3, :3] @ body + frame[:3, 3]``."""
     name: str
-    mesh: SegmentMesh
+    mesh: BodyMesh
     frame: np.ndarray
 
 
@@ -103,7 +104,7 @@ def write_deck(path: str | os.PathLike, bodies: list[DeckBody], deck: CcxDeck) -
         ``i`` of body ``b`` is CalculiX node ``node_offset[b] + i + 1`` (elements alike).
     """
     byname = {b.name: b for b in bodies}
-    out = ["*HEADING", "ltca: tooth segments in contact (fem.export)", "*NODE, NSET=NALL"]
+    out = ["*HEADING", "ltca: gear bodies in contact (fem.calculix.deck)", "*NODE, NSET=NALL"]
     node_off, elem_off, n0, e0 = {}, {}, 0, 0
     elem_blocks = []
     for b in bodies:

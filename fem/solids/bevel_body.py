@@ -37,7 +37,7 @@ import numpy as np
 from geometry.bevel.sampling import axial_target, flank_at
 from geometry.flank import Flank
 
-from .spec import SegmentMesh, outline_hash
+from .mesh_record import BodyMesh, outline_hash
 
 __all__ = ["BevelBodySpec", "build_bevel_body", "convex_shift"]
 
@@ -272,7 +272,7 @@ def _hexes(ids: np.ndarray, periodic: bool) -> np.ndarray:
     return c.reshape(-1, 2, 2, 2)
 
 
-def build_bevel_body(spec: BevelBodySpec, cache_dir=None) -> SegmentMesh:
+def build_bevel_body(spec: BevelBodySpec, cache_dir=None) -> BodyMesh:
     """Mesh a bevel member (module docstring): quadratic tetrahedra and named outward facet groups."""
     from .cache import load_cached, store_cached
     key = spec.spec_hash()
@@ -348,7 +348,7 @@ def _faces(ids2: np.ndarray, a0: int, a1: int, periodic: bool = False) -> np.nda
     return q.reshape(-1, 2, 2)
 
 
-def _quadratic(X: np.ndarray, tets: np.ndarray, groups: dict, key: str, seconds: float) -> SegmentMesh:
+def _quadratic(X: np.ndarray, tets: np.ndarray, groups: dict, key: str, seconds: float) -> BodyMesh:
     """10-node tetrahedra and 6-node facets with straight mid-edge nodes; facets turned outward."""
     from fem.elastic import EDGES, TRI_EDGES
     e = np.sort(tets[:, EDGES].reshape(-1, 2), 1)
@@ -372,7 +372,7 @@ def _quadratic(X: np.ndarray, tets: np.ndarray, groups: dict, key: str, seconds:
         m = np.searchsorted(code, ee[:, 0].astype(np.int64) * len(X) + ee[:, 1])
         facets[name] = np.concatenate([tri, len(X) + m.reshape(-1, 3)], 1)
     del centre
-    return SegmentMesh(nodes, tets10, facets, key, seconds)
+    return BodyMesh(nodes, tets10, facets, key, seconds)
 
 
 def _facet_owner(tets: np.ndarray):

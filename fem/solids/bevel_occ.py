@@ -36,9 +36,9 @@ import numpy as np
 from geometry.bevel.sampling import flank_at
 from geometry.flank import Flank
 
-from .segment_gmsh import extract_mesh, fresh_model
+from .gmsh_mesh import extract_mesh, fresh_model
 from .session import gmsh_session
-from .spec import SegmentMesh
+from .mesh_record import BodyMesh
 
 __all__ = ["BevelSolidSpec", "build_bevel_solid", "polar", "flank_t"]
 
@@ -280,7 +280,7 @@ _OPTIONS = {"General.NumThreads": 2, "Mesh.MeshSizeFromPoints": 0, "Mesh.MeshSiz
             "Geometry.OCCParallel": 1}
 
 
-def build_bevel_solid(spec: BevelSolidSpec, progress=None) -> SegmentMesh:
+def build_bevel_solid(spec: BevelSolidSpec, progress=None) -> BodyMesh:
     """Build and mesh the member ``spec``; ``extra`` of the record's spec gets the snap distance."""
     import gmsh
     say = progress or (lambda m: None)
@@ -311,4 +311,4 @@ def build_bevel_solid(spec: BevelSolidSpec, progress=None) -> SegmentMesh:
     spec.extra.update(snap_mm=moved, shift=shift)
     say(f"  bevel solid: {len(nodes)} nodes, {len(tets)} C3D10, largest snap {1e3 * moved:.2f} um "
         f"({time.perf_counter() - t0:.1f} s)")
-    return SegmentMesh(nodes, tets, facets, "bevel-occ", time.perf_counter() - t0)
+    return BodyMesh(nodes, tets, facets, "bevel-occ", time.perf_counter() - t0)

@@ -7,12 +7,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .spec import SegmentMesh
+from .mesh_record import BodyMesh
 
 __all__ = ["load_cached", "store_cached"]
 
 
-def load_cached(cache_dir, prefix: str, key: str) -> SegmentMesh | None:
+def load_cached(cache_dir, prefix: str, key: str) -> BodyMesh | None:
     """The mesh stored as ``<prefix>_<key>.npz`` in ``cache_dir``, or None (no cache, or a miss)."""
     if cache_dir is None:
         return None
@@ -22,10 +22,10 @@ def load_cached(cache_dir, prefix: str, key: str) -> SegmentMesh | None:
         return None
     with np.load(path) as d:
         facets = {k[len("facet__"):]: d[k] for k in d.files if k.startswith("facet__")}
-        return SegmentMesh(d["nodes"], d["tets"], facets, key, time.perf_counter() - t0)
+        return BodyMesh(d["nodes"], d["tets"], facets, key, time.perf_counter() - t0)
 
 
-def store_cached(cache_dir, prefix: str, mesh: SegmentMesh) -> None:
+def store_cached(cache_dir, prefix: str, mesh: BodyMesh) -> None:
     """Store ``mesh`` as ``<prefix>_<spec_hash>.npz`` in ``cache_dir`` (a temporary name, then renamed)."""
     if cache_dir is None:
         return

@@ -19,7 +19,7 @@ Surfaces are labelled by where they are: ``flank_{k}_{left|right}``, ``fillet_{k
 ``tip_{k}``, ``root``, ``bore`` (internal: ``rim``, the outer cylinder), ``ends`` (z = +-b/2) and ``body_faces``
 (the groove faces of a web).
 Tooth ``k`` (``-z//2 <= k < z - z//2``) is the outline rotated by ``-k 2 pi / z``, as in
-:mod:`fem.solids.spec`. Units mm; points (n, 3); 10-node tetrahedra in the meshio order.
+:mod:`fem.solids.mesh_record`. Units mm; points (n, 3); 10-node tetrahedra in the meshio order.
 """
 from __future__ import annotations
 
@@ -29,10 +29,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .section import rot2
-from .segment_gmsh import background_size, extract_mesh, polyline_distance
+from .planar import rot2
+from .gmsh_mesh import background_size, extract_mesh
+from .planar import polyline_distance
 from .session import gmsh_session
-from .spec import SegmentMesh
+from .mesh_record import BodyMesh
 
 __all__ = ["FullGearSpec", "build_full_gear"]
 
@@ -337,7 +338,7 @@ def _remove_flat_tets(rounds: int = 3) -> None:
     raise RuntimeError("full gear: flat tetrahedra remain after Netgen optimisation")
 
 
-def build_full_gear(spec: FullGearSpec, progress: bool = False) -> SegmentMesh:
+def build_full_gear(spec: FullGearSpec, progress: bool = False) -> BodyMesh:
     """Build and mesh the full gear ``spec`` with quadratic tetrahedra; returns the mesh record.
 
     Facet groups: see the module docstring. The mesh is deterministic (one gmsh thread)."""
@@ -362,4 +363,4 @@ def build_full_gear(spec: FullGearSpec, progress: bool = False) -> SegmentMesh:
             gmsh.model.remove()
             for k, v in old.items():
                 gmsh.option.setNumber(k, v)
-    return SegmentMesh(nodes, tets, facets, spec.spec_hash, time.perf_counter() - t0)
+    return BodyMesh(nodes, tets, facets, spec.spec_hash, time.perf_counter() - t0)

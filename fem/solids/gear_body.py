@@ -18,7 +18,7 @@ The 3D mesh is graded from ``h_flank`` at the fine teeth (slope 0.6) up to half 
 away, so the whole 360 deg ring costs about what a segment did. The fillets whose root stress is read
 (``fillets``) are meshed at ``h_fillet``, graded at slope 1 into the body (:mod:`fem.fillet`).
 
-Conventions as in :mod:`fem.solids.spec`: points (n, 3) in mm, tooth ``k`` is the outline rotated by
+Conventions as in :mod:`fem.solids.mesh_record`: points (n, 3) in mm, tooth ``k`` is the outline rotated by
 ``-k 2 pi / z``, 10-node tetrahedra in the meshio order, straight edges (mid-edge nodes at the edge
 midpoints), facets oriented outward and named ``flank_{k}_{left|right}``, ``fillet_{k}_...``,
 ``tip_{k}``, ``root``, ``far_teeth``, ``bore`` (internal: ``rim``), ``ends`` and ``body_faces``
@@ -32,10 +32,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from .cache import load_cached, store_cached
-from .section import rot2
-from .segment_gmsh import Polylines, background_size, fresh_model, mesh_labelled
+from .planar import rot2
+from .gmsh_mesh import background_size, fresh_model, mesh_labelled
+from .planar import Polylines
 from .session import gmsh_session
-from .spec import SegmentMesh, outline_hash
+from .mesh_record import BodyMesh, outline_hash
 
 __all__ = ["GearBodySpec", "build_gear_body"]
 
@@ -51,7 +52,9 @@ class GearBodySpec:
     Parameters
     ----------
     outline, kind, side, z, internal, face_width, lead_twist
-        One tooth's transverse outline and codes, as :class:`fem.solids.spec.SegmentSpec`.
+        One tooth's transverse outline (mm, dense, from the mid-gap at +pi/z clockwise over the tooth centred on +y
+        to the mid-gap at -pi/z), its codes (kind: 0 root, 1 fillet, 2 flank, 3 tip; side: -1 left, +1 right, 0
+        centre), teeth of the whole gear, internal gear, face width (mm) and lead twist (rad/mm, 0 for spur).
     fine_teeth : tuple of int
         Consecutive teeth meshed at ``h_flank`` (the loaded ones and a neighbour each side).
     r_support : float
@@ -76,7 +79,7 @@ class GearBodySpec:
         1 or 2.
     size_fields : tuple of str
         Extra gmsh ``MathEval`` size expressions in x, y, z (mm), combined by their minimum with the graded
-        sizes: local refinement (:func:`fem.solids.refinement.build_refined_segment`).
+        sizes: local refinement (:func:`fem.solids.refinement.build_refined_body`).
     """
 
     outline: np.ndarray
@@ -320,7 +323,7 @@ def _label(spec: GearBodySpec, volumes: list[int], refs) -> dict[int, str]:
     return names
 
 
-def build_gear_body(spec: GearBodySpec, cache_dir=None, progress: bool = False) -> SegmentMesh:
+def build_gear_body(spec: GearBodySpec, cache_dir=None, progress: bool = False) -> BodyMesh:
     """Mesh a whole gear body (module docstring); returns the mesh record the compliance path consumes.
 
     Parameters
@@ -347,7 +350,7 @@ def build_gear_body(spec: GearBodySpec, cache_dir=None, progress: bool = False) 
             gmsh.model.removeEntities([(3, v) for v in dropped])
         labels = _label(spec, volumes, refs)
         nodes, tets, facets = mesh_labelled(labels, volumes, spec.order, lambda fine: _size_field(spec, fine, labels))
-    mesh = SegmentMesh(nodes, tets, facets, spec.spec_hash, time.perf_counter() - t0)
+    mesh = BodyMesh(nodes, tets, facets, spec.spec_hash, time.perf_counter() - t0)
     store_cached(cache_dir, "body", mesh)
     return mesh
 

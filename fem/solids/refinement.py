@@ -1,7 +1,7 @@
-"""Meshing of a tooth segment with contact-line refinement, and the facets near those lines.
+"""Meshing of a gear body with contact-line refinement, and the facets near those lines.
 
-:func:`build_refined_segment` meshes a segment like :func:`fem.solids.segment.build_segment` with an extra size
-field: ``h_contact`` in a band around given line segments on the flank, growing with the distance across
+:func:`build_refined_body` meshes a whole gear body like :func:`fem.solids.gear_body.build_gear_body` with an extra
+size field: ``h_contact`` in a band around given line segments on the flank, growing with the distance across
 the band and with the depth below it. :func:`facets_near_lines` keeps the facets of named groups near the
 lines (the contact surfaces of a CalculiX deck, :mod:`fem.calculix.deck`).
 
@@ -15,10 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .gear_body import GearBodySpec, build_gear_body
-from .segment import build_segment
-from .spec import SegmentMesh, SegmentSpec
+from .mesh_record import BodyMesh
 
-__all__ = ["ContactLine", "build_refined_segment", "facets_near_lines", "line_size_expression"]
+__all__ = ["ContactLine", "build_refined_body", "facets_near_lines", "line_size_expression"]
 
 
 @dataclass(frozen=True)
@@ -53,13 +52,13 @@ def line_size_expression(line: ContactLine, h: float, half_band: float, grow_acr
             f"+{grow_across:.9g}*{excess(coord(el), 0.5 * length + half_band)}")
 
 
-def build_refined_segment(spec: SegmentSpec | GearBodySpec, lines: list[ContactLine], h_contact: float, half_band: float,
+def build_refined_body(spec: GearBodySpec, lines: list[ContactLine], h_contact: float, half_band: float,
                           grow_across: float = 0.3, grow_depth: float = 0.6,
-                          focus: tuple[tuple[ContactLine, float, float], ...] = ()) -> SegmentMesh:
+                          focus: tuple[tuple[ContactLine, float, float], ...] = ()) -> BodyMesh:
     """Mesh ``spec`` with elements of size ``h_contact`` (mm) within ``half_band`` (mm) of ``lines``.
 
     Outside the band the size grows by ``grow_across`` per mm along the flank and ``grow_depth`` per mm
-    below it, up to the segment's own graded sizes (``SegmentSpec.size_fields``). ``focus`` adds finer
+    below it, up to the body's own graded sizes (``GearBodySpec.size_fields``). ``focus`` adds finer
     zones, each (line, h, half_band): typically a short piece of one contact line where the pressure peak
     is resolved (the smallest size wins)."""
     for h in (h_contact, *(f[1] for f in focus)):
@@ -67,13 +66,10 @@ def build_refined_segment(spec: SegmentSpec | GearBodySpec, lines: list[ContactL
             raise ValueError(f"contact element size {h} must be in (0, h_flank = {spec.h_flank}]")
     exprs = tuple(line_size_expression(ln, h_contact, half_band, grow_across, grow_depth) for ln in lines)
     exprs += tuple(line_size_expression(ln, h, hb, grow_across, grow_depth) for ln, h, hb in focus)
-    refined = dataclasses.replace(spec, size_fields=exprs)
-    if isinstance(spec, GearBodySpec):
-        return build_gear_body(refined)
-    return build_segment(refined, cache_dir=None)
+    return build_gear_body(dataclasses.replace(spec, size_fields=exprs))
 
 
-def facets_near_lines(mesh: SegmentMesh, groups: tuple[str, ...], lines: list[ContactLine],
+def facets_near_lines(mesh: BodyMesh, groups: tuple[str, ...], lines: list[ContactLine],
                       halo: float) -> np.ndarray:
     """The facets (k, 6) of ``groups`` whose centroid lies within ``halo`` (mm) of any of ``lines``.
 

@@ -1,6 +1,6 @@
 """Cross-check of the loaded contact against CalculiX on the same gear pair.
 
-For each mesh position both members' tooth segments (the same teeth, bore and outline as our
+For each mesh position both members' whole-gear bodies (the same teeth, bore and outline as our
 compliance bodies) are meshed with quadratic tetrahedra refined in a band around the unloaded contact
 lines, placed in the world at the position (pinion rotated by phi1 = phi_pitch - roll, gear by
 ``pair.gear_frame(phi1)``), and solved by CalculiX with frictionless surface-to-surface penalty contact:
@@ -11,7 +11,8 @@ rotation undetermined before contact closes; the pinion is therefore placed a ti
 
 Compared per position with ours (:func:`ltca.cylindrical.loaded.solve_position`): loaded TE (unloaded part removed,
 arcsec of the gear), load share per pinion tooth, peak pressure, wall time. The validation command that
-runs the comparison, with CalculiX's own convergence ladders, is :mod:`ltca.verify.crosscheck`.
+runs the comparison is :mod:`ltca.verify.crosscheck`; CalculiX's own convergence ladders are maintainer tooling
+(``tools/calculix_refs``, not installed).
 """
 from __future__ import annotations
 
@@ -27,7 +28,7 @@ import numpy as np
 from geometry.cylindrical import arc_length
 from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
 from fem.calculix.run import read_results, run_ccx
-from fem.solids import ContactLine, build_refined_segment, facets_near_lines
+from fem.solids import ContactLine, build_refined_body, facets_near_lines
 from fem.compliance import body_spec
 from geometry.pair import rotation_z
 
@@ -35,9 +36,8 @@ from ..cylindrical.loaded_model import LoadedModel
 from ..cylindrical.loaded import solve_position
 from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact, flank_gaps
 
-__all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "richardson",
-           "grid_convergence_index", "converged_estimate", "contact_lines", "solve_ccx", "solve_ours",
-           "narrowest_contact"]
+__all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "contact_lines", "solve_ccx",
+           "solve_ours", "narrowest_contact"]
 
 
 @dataclass(frozen=True)
@@ -197,8 +197,8 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
         i_focus = [k for k, _, _ in lines].index(focus.tooth)   # ValueError: the focus tooth is not in contact
         F1 = ((_window(L1[i_focus], focus), focus.h, focus.half_band),)
         F2 = ((_window(L2[i_focus], focus), focus.h, focus.half_band),)
-    m1 = build_refined_segment(spec1, L1, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F1)
-    m2 = build_refined_segment(spec2, L2, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F2)
+    m1 = build_refined_body(spec1, L1, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F1)
+    m2 = build_refined_body(spec2, L2, st.h_contact, st.half_band, st.grow_across, st.grow_depth, focus=F2)
     t_mesh = time.perf_counter() - t0
     # contact surfaces: the driving flank (pinion) and the loaded flank and tip (gear) near each contact line
     side2 = "right" if model.gear_side > 0 else "left"
@@ -261,52 +261,6 @@ def solve_ccx(lm: LoadedModel, roll: float, torque: float, st: CcxSettings, work
     done.write_text(json.dumps({"deck_sha256": digest, "te": out.te, "pair_load": out.pair_load,
                                 "max_pressure": out.max_pressure, "wall": out.wall, "info": out.info}, indent=1))
     return out
-
-
-def richardson(values: list[float], ratio: float) -> tuple[float, float] | None:
-    """Extrapolated limit and observed order of three values on meshes refined by ``ratio`` each time.
-
-    p = ln((f0 - f1) / (f1 - f2)) / ln(ratio), f = f2 + (f2 - f1) / (ratio^p - 1) (Richardson extrapolation with
-    the observed order; Roache, *Verification and Validation in Computational Science and Engineering*, 1998,
-    ch. 5). None outside the asymptotic range: when the differences change sign or vanish, when the last one is
-    not the smaller (no convergence), or when the order lies outside [0.5, 4] (the formal orders of quadratic
-    elements are 2 for stress and 3 for displacement; an order far beyond them is a near-coincidence of two
-    rungs, not a rate)."""
-    f0, f1, f2 = values
-    d1, d2 = f0 - f1, f1 - f2
-    if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
-        return None
-    p = np.log(d1 / d2) / np.log(ratio)
-    if not 0.5 <= p <= 4.0:
-        return None
-    return float(f2 - d2 / (ratio ** p - 1)), float(p)
-
-
-def grid_convergence_index(values: list[float], ratio: float, safety: float = 1.25) -> float | None:
-    """Roache's grid convergence index of the finest of three rungs: safety |f2 - f1| / |f2| / (ratio^p - 1), the
-    relative band that holds the converged value with the observed order p of :func:`richardson` (safety 1.25 for
-    a three-rung study; Roache 1998; Celik et al., J. Fluids Eng. 130 (2008) 078001). None outside the asymptotic
-    range."""
-    est = richardson(values, ratio)
-    if est is None:
-        return None
-    f1, f2 = values[1:]
-    return float(safety * abs(f2 - f1) / abs(f2) / (ratio ** est[1] - 1))
-
-
-def converged_estimate(values: list[float], sizes: list[float]) -> tuple[float, float | None]:
-    """The converged estimate of a quantity over a refinement ladder (``values`` on element sizes ``sizes``,
-    coarsest first) and its grid convergence index: where the last three rungs are refined by one ratio (within
-    1 %) and converge in the asymptotic range, :func:`richardson` and :func:`grid_convergence_index`; otherwise
-    the finest value and None."""
-    if len(values) < 3 or None in values[-3:]:
-        return values[-1], None
-    h = sizes[-3:]
-    ratio = h[0] / h[1]
-    if abs(h[1] / h[2] / ratio - 1) > 0.01:
-        return values[-1], None
-    est = richardson(list(values[-3:]), ratio)
-    return (values[-1], None) if est is None else (est[0], grid_convergence_index(list(values[-3:]), ratio))
 
 
 def narrowest_contact(res) -> tuple[int, float]:

@@ -21,13 +21,12 @@ close can). Same quantities on both sides:
   value; information only: most pairs of this mesh touch at a tip edge, where the pressure is singular and
   both figures depend on the mesh).
 
-Bounds: TE 3 %, every share 0.03. The first position is also solved with the contact band refined
-``refine`` times by 1.5 (the CalculiX convergence ladder). ``freeze`` writes the CalculiX results (finest rung
-at the first position) with their provenance as a frozen reference (JSON).
+Bounds: TE 3 %, every share 0.03. One CalculiX run per position at the contact band ``band_um``. CalculiX's
+refinement ladder and the frozen reference the tests compare with are maintainer tooling
+(``tools/calculix_refs/freeze_planetary.py``, not installed), built on :func:`compare_positions`.
 """
 from __future__ import annotations
 
-import dataclasses
 import json
 import sys
 import time
@@ -37,10 +36,10 @@ import numpy as np
 
 from ..cylindrical.tca import ARCSEC_PER_RAD
 from .calculix import penalty_slope
-from .whole_check import ccx_version
 from .whole_gear import WholeSettings, solve_whole
 
-__all__ = ["BOUNDS_PLANETARY", "planetary_settings", "prepare_ours", "solve_ours", "run_planetary_whole_validation"]
+__all__ = ["BOUNDS_PLANETARY", "planetary_settings", "prepare_ours", "solve_ours", "check_arguments",
+           "ccx_record", "compare_row", "compare_positions", "table_lines", "run_planetary_whole_validation"]
 
 BOUNDS_PLANETARY = {"te_rel": 0.03, "share_abs": 0.03}
 
@@ -57,7 +56,8 @@ def planetary_settings(b_nom: float, module: float, band_um: float) -> WholeSett
                          fine_lines_only=True)
 
 
-def _check(case, positions, torque_nm, band_um, refine, fidelity):
+def check_arguments(case, positions, torque_nm, band_um, fidelity) -> None:
+    """Raise ``CaseError`` naming the first bad argument of a check of the planetary ``case``."""
     from ..case import FIDELITIES
     from ..errors import CaseError
     half = 180.0 / case.design.z
@@ -65,8 +65,6 @@ def _check(case, positions, torque_nm, band_um, refine, fidelity):
         raise CaseError("--positions", positions, f"satellite positions in deg with |phi| <= {half:.4f}")
     if torque_nm is None or not np.isfinite(torque_nm) or not 0 < torque_nm <= 1e5:
         raise CaseError("--torque", torque_nm, "one satellite torque in (0, 1e5] N m")
-    if not 0 <= refine <= 3:
-        raise CaseError("--refine", refine, "an integer from 0 to 3")
     if not 100.0 <= band_um <= 3000.0:
         raise CaseError("--band", band_um, "a contact-band element size from 100 to 3000 um")
     if fidelity not in FIDELITIES:
@@ -80,7 +78,7 @@ def _record(share: dict, theta: float, theta0: float, rb1: float, p: float, wall
             "loaded_pairs": sum(v >= SHARE_MIN for v in share.values()), "max_pressure": float(p), "wall_s": wall}
 
 
-def _row(phi: float, ours: dict, c: dict) -> dict:
+def compare_row(phi: float, ours: dict, c: dict) -> dict:
     """One position compared: TE difference (%), largest share difference, within the bounds."""
     keys = set(ours["share"]) | set(c["share"])
     dsh = max(abs(ours["share"].get(k, 0.0) - c["share"].get(k, 0.0)) for k in keys)
@@ -89,7 +87,8 @@ def _row(phi: float, ours: dict, c: dict) -> dict:
             "ok": abs(dte) <= BOUNDS_PLANETARY["te_rel"] and dsh <= BOUNDS_PLANETARY["share_abs"]}
 
 
-def _ccx_record(c, rb1: float) -> dict:
+def ccx_record(c, rb1: float) -> dict:
+    """One CalculiX run as the comparison (and a frozen reference) stores it."""
     rec = _record(c.share(sorted(c.pair_load)), c.info["theta"], c.info["theta0"], rb1, c.max_pressure, c.wall)
     rec.update(pair_load={str(k): v for k, v in sorted(c.pair_load.items())}, deck_sha256=c.info["deck_sha256"],
                nodes=c.info["nodes"], elements=c.info["elements"], h_contact_um=1e3 * c.info["h_contact_mm"],
@@ -124,9 +123,25 @@ def solve_ours(sm, lm, phi_deg: float, torque: float) -> dict:
                    r.max_pressure, time.perf_counter() - t1)
 
 
+def ccx_folder(outdir: Path, phi: float, torque_nm: float, st) -> Path:
+    """The folder of one CalculiX run under ``outdir``: by position (deg), torque (N m) and contact band (um)."""
+    return outdir / f"ccx_planetary_p{phi:+.4f}_t{torque_nm:g}_b{1e3 * st.h_contact:.0f}"
+
+
+def compare_positions(sm, lm, positions: list[float], torque_nm: float, st: WholeSettings, outdir: Path,
+                      say) -> list[dict]:
+    """Ours and CalculiX (settings ``st``) at each satellite position (deg): one comparison row per position."""
+    rb1 = sm.pair.pinion.r_base
+    rows = []
+    for phi in positions:
+        ours = solve_ours(sm, lm, phi, 1e3 * torque_nm)
+        c = solve_whole(lm, phi, 1e3 * torque_nm, st, ccx_folder(outdir, phi, torque_nm, st), say=say)
+        rows.append(compare_row(phi, ours, ccx_record(c, rb1)))
+    return rows
+
+
 def run_planetary_whole_validation(case_path: str, positions: list[float], torque_nm: float | None, out: str,
-                                   band_um: float | None = None, refine: int = 1, fidelity: str | None = None,
-                                   freeze: str | None = None, command: str | None = None, progress: bool = True,
+                                   band_um: float | None = None, fidelity: str | None = None, progress: bool = True,
                                    cache: str | None = None) -> int:
     """Ours against whole-gear CalculiX at satellite positions ``positions`` (deg) under ``torque_nm`` (N m on the
     satellite); returns 0 within the bounds, else 1. Writes ``planetary_whole.json`` to ``out``.
@@ -137,53 +152,30 @@ def run_planetary_whole_validation(case_path: str, positions: list[float], torqu
     case = load_planetary_case(case_path)
     band_um = 600.0 if band_um is None else band_um
     fidelity = fidelity or case.fidelity
-    _check(case, positions, torque_nm, band_um, refine, fidelity)
+    check_arguments(case, positions, torque_nm, band_um, fidelity)
     ccx_path()
     say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
-    torque = 1e3 * torque_nm
     t0 = time.perf_counter()
-    sm, lm = prepare_ours(case, positions, torque, fidelity, cache, say)
+    sm, lm = prepare_ours(case, positions, 1e3 * torque_nm, fidelity, cache, say)
     t_prepare = time.perf_counter() - t0
-    rb1 = sm.pair.pinion.r_base
     base = planetary_settings(lm.b_nom, case.design.m, band_um)
     outdir = Path(out)
     outdir.mkdir(parents=True, exist_ok=True)
-
-    def ccx(phi, st):
-        folder = f"ccx_planetary_p{phi:+.4f}_t{torque_nm:g}_b{1e3 * st.h_contact:.0f}"
-        return solve_whole(lm, phi, torque, st, outdir / folder, say=say)
-    rows = []
-    for phi in positions:
-        ours = solve_ours(sm, lm, phi, torque)
-        rows.append(_row(phi, ours, _ccx_record(ccx(phi, base), rb1)))
-    ladder = [rows[0]["ccx"]]
-    for i in range(1, refine + 1):
-        h = base.h_contact / 1.5 ** i
-        st = dataclasses.replace(base, h_contact=h, half_band=base.half_band - base.h_contact + h,
-                                 penalty=penalty_slope(h))
-        ladder.append(_ccx_record(ccx(positions[0], st), rb1))
-    text = _table(case.name, torque_nm, fidelity, rows, ladder, t_prepare, positions[0])
-    print(text)
+    rows = compare_positions(sm, lm, positions, torque_nm, base, outdir, say)
+    print("\n".join(table_lines(case.name, torque_nm, fidelity, rows, t_prepare)))
     result = {"case": case_path, "torque_nm": torque_nm, "fidelity": fidelity, "prepare_s": t_prepare,
-              "bounds": BOUNDS_PLANETARY, "rows": rows, "refinement": ladder}
+              "bounds": BOUNDS_PLANETARY, "rows": rows}
     (outdir / "planetary_whole.json").write_text(json.dumps(result, indent=1))
-    if freeze:
-        rec = dict(result, calculix_version=ccx_version(), command=command or "",
-                   date=time.strftime("%Y-%m-%d", time.gmtime()),
-                   model="whole gears, every tooth (fem.solids.full_gear, the wheel internal): wheel outer cylinder "
-                         "fixed (housing), satellite bore on a rigid body turning about the satellite axis; "
-                         "frictionless surface-to-surface penalty contact (ltca.verify.whole_gear)",
-                   units={"te_um": "um along the line of action (satellite rotation x r_b1)", "te_arcsec":
-                          "arcsec of the satellite", "pair_load": "N", "max_pressure": "MPa", "phi_deg":
-                          "satellite position, deg (geometry.satellite.mesh)"})
-        rec["rows"] = [_row(r["phi_deg"], r["ours"], ladder[-1]) if i == 0 else r for i, r in enumerate(rows)]
-        Path(freeze).parent.mkdir(parents=True, exist_ok=True)
-        Path(freeze).write_text(json.dumps(rec, indent=1) + "\n")
     return 0 if all(r["ok"] for r in rows) else 1
 
 
-def _table(name, torque_nm, fidelity, rows, ladder, t_prepare, phi0) -> str:
-    sh = lambda d: " ".join(f"{k}:{v:.3f}" for k, v in d.items() if v >= 5e-4)     # noqa: E731
+def shares(d: dict) -> str:
+    """Pair shares of at least 5e-4 as ``pair:share`` words."""
+    return " ".join(f"{k}:{v:.3f}" for k, v in d.items() if v >= 5e-4)
+
+
+def table_lines(name, torque_nm, fidelity, rows, t_prepare) -> list[str]:
+    """The comparison table of ``rows`` (:func:`compare_positions`), three lines per position."""
     lines = [f"{name} at {torque_nm:g} N m on the satellite: ours ({fidelity}) against CalculiX on whole gears",
              f"{'phi':>6} {'TE ours':>8} {'TE ccx':>8} {'dTE%':>6} {'pairs':>5} {'p ours':>6} {'p ccx':>6} {'dsh':>5}"
              f" {'t ours':>6} {'t ccx':>6}   (TE um along the line of action, p MPa, t s)"]
@@ -192,14 +184,7 @@ def _table(name, torque_nm, fidelity, rows, ladder, t_prepare, phi0) -> str:
         lines.append(f"{r['phi_deg']:6.2f} {o['te_um']:8.3f} {c['te_um']:8.3f} {r['te_diff_pct']:+6.2f} "
                      f"{o['loaded_pairs']:>2}/{c['loaded_pairs']:<2} {o['max_pressure']:6.0f} {c['max_pressure']:6.0f} "
                      f"{r['share_diff']:5.3f} {o['wall_s']:6.2f} {c['wall_s']:6.0f}{'' if r['ok'] else '  OUT'}")
-        lines.append(f"       share ours {sh(o['share'])}")
-        lines.append(f"       share ccx  {sh(c['share'])}")
+        lines.append(f"       share ours {shares(o['share'])}")
+        lines.append(f"       share ccx  {shares(c['share'])}")
     lines.append(f"ours: compliance {t_prepare:.1f} s once, then the contact solve (t ours); CalculiX: mesh + solve")
-    lines.append(f"CalculiX contact-band refinement at phi {phi0:g} deg (band -> TE um, pairs, p, nodes, s):")
-    for c in ladder:
-        lines.append(f"  {c['h_contact_um']:5.0f} um  TE {c['te_um']:8.3f}  {c['loaded_pairs']} pairs  "
-                     f"p {c['max_pressure']:6.0f}  {c['nodes']} nodes  {c['wall_s']:.0f} s  share {sh(c['share'])}")
-    if len(ladder) >= 2:
-        change = 100 * (ladder[-1]["te_um"] / ladder[-2]["te_um"] - 1)
-        lines.append(f"  TE change over the last refinement: {change:+.2f} %")
-    return "\n".join(lines)
+    return lines

@@ -1,32 +1,26 @@
-"""The records of a tooth-segment solid meshed by gmsh with graded quadratic tetrahedra: what to mesh, the mesh.
+"""What to mesh for a tooth segment: a few consecutive teeth of a cylindrical gear on a slice of the rim.
 
-A segment is a few consecutive teeth of a cylindrical gear (spur or helical, external or internal)
-on a slice of the rim, closed by two radial cut faces and the bore (external) or the rim's outer
-cylinder (internal). The transverse section is built from one tooth's dense outline (as produced by
-generation), rotated into place for each included tooth; every run of equal (kind, side) codes becomes
-its own spline curve, so each flank, fillet and tip surface gets its own named facet group.
-This module holds the records: what to mesh (:class:`SegmentSpec`) and the mesh (:class:`SegmentMesh`).
-The section is built in :mod:`fem.solids.section`, the solid and its mesh in :mod:`fem.solids.segment_gmsh`,
-the whole by :func:`fem.solids.segment.build_segment`.
+The segment is closed by two radial cut faces and the bore (external) or the rim's outer cylinder (internal).
+The transverse section is built from one tooth's dense outline (as produced by generation), rotated into place
+for each included tooth; every run of equal (kind, side) codes becomes its own spline curve, so each flank,
+fillet and tip surface gets its own named facet group. The section is built in
+:mod:`tools.segment_mesh.section`, the solid and its mesh in :mod:`tools.segment_mesh.mesher`; the mesh is a
+:class:`fem.solids.mesh_record.BodyMesh` (conventions there).
 
 Conventions
 -----------
-* Points are (n, 3) with xyz on the last axis (see ``geometry.flank``); units mm, rad.
 * Tooth ``k`` is the outline rotated by ``-k * 2 pi / z`` about +z (clockwise for ``k > 0``).
 * Helical teeth: ``point(z) = Rot(lead_twist * z) point(0)``.
-* ``tets`` use the meshio / scikit-fem / CalculiX order of the 10-node tetrahedron
-  (mid-edge nodes 01, 12, 20, 03, 13, 23). gmsh's own order swaps the last two; it is converted here.
-* Elements are second order with straight edges (``Mesh.SecondOrderLinear = 1``): the mid-edge nodes
-  are the edge midpoints, so every element map is affine. Corner nodes lie on the CAD surfaces.
 """
 from __future__ import annotations
 
-import hashlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SegmentSpec", "SegmentMesh", "outline_hash"]
+from fem.solids.mesh_record import outline_hash
+
+__all__ = ["SegmentSpec"]
 
 _VERSION = "mesh-1"                    # bump when the meshing recipe changes (invalidates caches)
 
@@ -63,7 +57,7 @@ class SegmentSpec:
         Element order, 1 or 2.
     size_fields : tuple of str
         Extra gmsh ``MathEval`` size expressions in x, y, z (mm) combined with the graded sizes by their
-        minimum: local refinement, e.g. a band around contact lines (:func:`fem.solids.refinement.build_refined_segment`).
+        minimum: local refinement, e.g. a band around contact lines (:func:`fem.solids.refinement.line_size_expression`).
     """
 
     outline: np.ndarray
@@ -127,45 +121,3 @@ class SegmentSpec:
         for expr in self.size_fields:
             h.update(expr.encode())
         return h.hexdigest()[:20]
-
-
-@dataclass(frozen=True)
-class SegmentMesh:
-    """A meshed tooth segment.
-
-    Attributes
-    ----------
-    nodes : ndarray, shape (N, 3)
-        Node coordinates, mm.
-    tets : ndarray, shape (M, 10) (order 2) or (M, 4) (order 1)
-        Node indices, meshio order, positive orientation.
-    facets : dict of str to ndarray, shape (k, 6) (order 2) or (k, 3)
-        Boundary triangles (3 vertices, then mid-edge 01, 12, 20), oriented outward. Names:
-        ``"bore"`` (internal: ``"rim"``), ``"cut"``, ``"ends"``, ``"root"``,
-        ``"flank_{k}_{left|right}"``, ``"fillet_{k}_{left|right}"``, ``"tip_{k}"``.
-    spec_hash : str
-        ``SegmentSpec.spec_hash`` of the spec that made it.
-    seconds : float
-        Wall time spent building (or loading) the mesh, s.
-    """
-
-    nodes: np.ndarray
-    tets: np.ndarray
-    facets: dict[str, np.ndarray]
-    spec_hash: str
-    seconds: float = field(default=0.0, compare=False)
-
-    @property
-    def n_dofs(self) -> int:
-        """Displacement degrees of freedom, 3 per node."""
-        return 3 * len(self.nodes)
-
-
-def outline_hash(version: str, *arrays: np.ndarray):
-    """A SHA-256 object fed with a recipe ``version`` and the shapes and float bytes of ``arrays``."""
-    h = hashlib.sha256(version.encode())
-    for a in arrays:
-        arr = np.ascontiguousarray(a, dtype=float)
-        h.update(str(arr.shape).encode())
-        h.update(arr.tobytes())
-    return h

@@ -1,9 +1,9 @@
 """Transverse section of a tooth segment as an ordered chain of labelled curves.
 
-The closed boundary of the section of :class:`fem.solids.spec.SegmentSpec` (teeth outlines, two radial cuts,
+The closed boundary of the section of :class:`tools.segment_mesh.spec.SegmentSpec` (teeth outlines, two radial cuts,
 the bore or rim arcs), cut into pieces: every run of equal (kind, side) codes of the tooth outline is
-one spline piece named after its facet group. :mod:`fem.solids.segment_gmsh` sweeps the pieces into the solid
-and names its surfaces by them. Conventions as in :mod:`fem.solids.spec`.
+one spline piece named after its facet group. :mod:`tools.segment_mesh.mesher` sweeps the pieces into the solid
+and names its surfaces by them. Conventions as in :mod:`tools.segment_mesh.spec`.
 """
 from __future__ import annotations
 
@@ -11,9 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fem.solids.planar import rot2
+
 from .spec import SegmentSpec
 
-__all__ = ["SectionPiece", "rot2", "section_pieces"]
+__all__ = ["SectionPiece", "section_pieces"]
 
 _KIND_NAMES = {0: "root", 1: "fillet", 2: "flank", 3: "tip"}
 _SIDE_NAMES = {-1: "left", 1: "right"}
@@ -27,12 +29,6 @@ class SectionPiece:
     kind: str                  # "spline", "line" or "arc" (arc centred on the axis)
     pts: np.ndarray            # (m, 2) points through which the curve passes (arc: start, end)
     ref: np.ndarray            # (p, 2) dense polyline of the curve, for labelling surfaces
-
-
-def rot2(xy: np.ndarray, phi: float) -> np.ndarray:
-    """Points ``xy`` (n, 2) rotated counter-clockwise by ``phi`` (rad) about the origin."""
-    c, s = np.cos(phi), np.sin(phi)
-    return xy @ np.array([[c, s], [-s, c]])
 
 
 def _subsample(pts: np.ndarray, ds: float, n_min: int = 4, n_max: int = 400) -> np.ndarray:

@@ -1,17 +1,18 @@
-"""``ltca validate --reference calculix-whole --merge FILE``: refine chosen positions of a frozen reference.
+"""Refine chosen positions of a frozen whole-gear reference: ``python3 -m tools.calculix_refs.merge_whole FILE``.
 
-A frozen whole-gear reference (:mod:`ltca.verify.whole_check`, ``--freeze``) refines its contact band at the first
-position only (``convergence``); its other positions stay at the base band. ``--merge`` refines the named
+A frozen whole-gear reference (:mod:`tools.calculix_refs.freeze_whole`) refines its contact band at the first
+position only (``convergence``); its other positions stay at the base band. This script refines the named
 positions of such a file ``refine`` times by 1.5 beyond the band each was frozen at (contact band, its half-width
-beyond the band, the penalty slope and the tension-side fillets scaled as the ladder of ``--freeze``; every other
+beyond the band, the penalty slope and the tension-side fillets scaled as the freeze's ladder; every other
 element size as frozen), replaces each of them by its finest run with our figures of today's code
 (``ours_at_freeze``), and keeps each position's ladder, coarsest first, under ``ladders`` keyed by the roll
 (``f"{roll:g}"``), the frozen run first. The rest of the file (the first position's ``convergence``, the other
 positions, the original ``command``) is kept; ``merged`` records each merge's command, date, CalculiX version and
-positions. CalculiX runs are kept under ``out`` and reused, as ``--freeze``'s.
+positions. CalculiX runs are kept under ``out`` and reused, as the freeze's.
 """
 from __future__ import annotations
 
+import argparse
 import dataclasses
 import json
 import time
@@ -19,11 +20,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .calculix import penalty_slope
-from .whole_check import CONVERGED, FLANK_AT, _entry, _finite, ccx_version, ours_figures, prepare_ours
-from .whole_gear import solve_whole, whole_settings
+from ltca.verify.calculix import penalty_slope
+from ltca.verify.whole_check import ours_figures, prepare_ours
+from ltca.verify.whole_gear import solve_whole, whole_settings
 
-__all__ = ["run_whole_merge", "ladder_key", "rung_settings", "ladder_change"]
+from .freeze_whole import CONVERGED, FLANK_AT, entry
+from .provenance import ccx_version, command_line, finite, run
+
+__all__ = ["run_whole_merge", "ladder_key", "rung_settings", "ladder_change", "main"]
 
 _FROZEN_SIZES = ("h_contact", "half_band", "h_flank", "h_tooth", "h_body", "h_fillet")
 
@@ -36,7 +40,7 @@ def ladder_key(roll_deg: float) -> str:
 def rung_settings(base, frozen: dict, n: int):
     """The settings ``n`` rungs of 1.5 finer than a frozen run (its entry ``frozen``): ``base``
     (:class:`ltca.verify.whole_gear.WholeSettings`) with the frozen element sizes and penalty, then the contact band,
-    its half-width beyond the band, the penalty slope and the fillets scaled as ``--freeze``'s ladder."""
+    its half-width beyond the band, the penalty slope and the fillets scaled as the freeze's ladder."""
     st = dataclasses.replace(base, penalty=frozen["penalty_mpa_per_mm"],
                              **{k: frozen["mesh_sizes_mm"][k] for k in _FROZEN_SIZES})
     f = 1.5 ** -n
@@ -62,7 +66,7 @@ def ladder_change(ladder: list[dict]) -> dict:
 
 
 def _check_body(base, frozen: dict, roll: float) -> None:
-    from ..errors import CaseError
+    from ltca.errors import CaseError
     sizes = frozen["mesh_sizes_mm"]
     if any(abs(sizes[k] / getattr(base, k) - 1) > 1e-9 for k in ("h_flank", "h_tooth", "h_body")):
         raise CaseError("--coarse-body", roll, "the body the position was frozen with (its h_flank, h_tooth, h_body)")
@@ -77,12 +81,12 @@ def run_whole_merge(case_path: str, positions: list[float], out: str, merge: str
     Raises ``CaseError`` on bad arguments (a position the file lacks, another case, another body) before looking
     for ``ccx``, and ``CcxNotFound`` when it is missing."""
     from fem.calculix.run import ccx_path
-    from ..case import FIDELITIES, load_case
-    from ..cylindrical.loaded import solve_position
-    from ..errors import CaseError
+    from ltca.case import FIDELITIES, load_case
+    from ltca.cylindrical.loaded import solve_position
+    from ltca.errors import CaseError
     path = Path(merge)
     if not path.is_file():
-        raise CaseError("--merge", merge, "a frozen whole-gear reference (JSON) written by --freeze")
+        raise CaseError("FILE", merge, "a frozen whole-gear reference (JSON) of tools.calculix_refs.freeze_whole")
     rec = json.loads(path.read_text())
     if Path(rec["case"]).name != Path(case_path).name:
         raise CaseError("--case", case_path, f"the case of {merge}: {rec['case']}")
@@ -109,13 +113,13 @@ def run_whole_merge(case_path: str, positions: list[float], out: str, merge: str
              "(band, fillet -> TE, stiffness, flank peak, root stress pinion / gear, nodes, ccx s); ours at the end"]
     for rd in rolls:
         key = ladder_key(rd)
-        entry = {k: v for k, v in rec["positions"][frozen[key]].items() if k != "ours_at_freeze"}
-        ladder = ladders.get(key) or [entry]
+        frozen_run = {k: v for k, v in rec["positions"][frozen[key]].items() if k != "ours_at_freeze"}
+        ladder = ladders.get(key) or [frozen_run]
         start = ladder[-1]
         for n in range(1, refine + 1):
             st = rung_settings(base, start, n)
             c = solve_whole(lm, rd, torque, st, Path(out) / f"ccx_whole_r{rd:+.4f}_b{1e3 * st.h_contact:.0f}", say=say)
-            ladder = ladder + [_entry(c)]
+            ladder = ladder + [entry(c)]
         r = solve_position(lm, np.radians(rd), torque)
         ours = ours_figures(lm, r, torque)
         ladders[key] = ladder
@@ -139,5 +143,36 @@ def run_whole_merge(case_path: str, positions: list[float], out: str, merge: str
         "command": command or "", "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
         "calculix_version": ccx_version(), "positions": [ladder_key(r) for r in rolls], "refine": refine,
         "ours_compliance_wall_s": t_prepare})
-    path.write_text(json.dumps(_finite(rec), indent=1, allow_nan=False) + "\n")
+    path.write_text(json.dumps(finite(rec), indent=1, allow_nan=False) + "\n")
     return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="python3 -m tools.calculix_refs.merge_whole",
+                                description="Refine positions of a frozen whole-gear reference by rungs of 1.5 beyond "
+                                            "the band each was frozen at and merge them into it, with their ladders.")
+    p.add_argument("merge", metavar="FILE", help="the frozen reference (JSON), rewritten in place")
+    p.add_argument("--case", default="cases/fzg_c14.toml", help="its case file (default cases/fzg_c14.toml)")
+    p.add_argument("--positions", type=float, nargs="+", metavar="DEG", help="frozen rolls to refine, deg")
+    p.add_argument("--out", default="out/whole_freeze", help="CalculiX runs, kept and reused (default out/whole_freeze)")
+    p.add_argument("--refine", type=int, default=1, help="rungs of 1.5 beyond the frozen band (1 to 3; default 1)")
+    p.add_argument("--fidelity", choices=["coarse", "default", "fine"], default="default", help="our fidelity")
+    p.add_argument("--coarse-body", action="store_true", help="the coarse CalculiX body the file was frozen with")
+    p.add_argument("--threads", type=int, default=2, help="CalculiX threads (default 2)")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    import sys
+    argv = sys.argv[1:] if argv is None else argv
+
+    def work(a):
+        return run_whole_merge(a.case, a.positions, a.out, a.merge, refine=a.refine, fidelity=a.fidelity,
+                               command=command_line("tools.calculix_refs.merge_whole", argv), progress=not a.quiet,
+                               threads=a.threads, body="coarse" if a.coarse_body else "default")
+    return run(build_parser(), work, argv)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
