@@ -21,9 +21,11 @@ Layers: ``geometry`` (tooth surfaces, kinematics) <- ``fem`` (meshes, elasticity
 """
 __version__ = "0.1.0"
 
-__all__ = ["Case", "load_case", "run", "LoadedResult", "TorqueFigures", "open_result", "__version__"]
+__all__ = ["Case", "load_case", "run", "tca", "LoadedResult", "TcaResult", "TorqueFigures", "open_result",
+           "__version__"]
 
-_LAZY = {"Case": "cases", "load_case": "cases", "run": "core", "LoadedResult": "results",
+_LAZY = {"Case": "cases", "load_case": "cases", "run": "core", "tca": "core", "TcaResult": "core",
+         "LoadedResult": "results",
          "TorqueFigures": "results", "open_result": "results"}
 
 

@@ -6,6 +6,7 @@ and scripts all come through here; a gear kind supplies its plan / execute / wri
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
@@ -14,7 +15,7 @@ from .errors import CaseError
 from .kinds import Analysis
 from .results import LoadedResult
 
-__all__ = ["run", "plan", "execute", "ANALYSES"]
+__all__ = ["run", "tca", "TcaResult", "plan", "execute", "ANALYSES"]
 
 Progress = Callable[[str], None]
 
@@ -86,3 +87,28 @@ def run(case: Case | str | Path, *, fidelity: str | None = None, positions: int 
     """
     case, p = plan(case, fidelity=fidelity, positions=positions, torques_nm=torques_nm)
     return execute(case, p, progress=progress, cache=cache)
+
+
+@dataclass(frozen=True)
+class TcaResult:
+    """The unloaded analysis of a gear-pair case: the case and its summary (engineer's units: contact path,
+    unloaded TE in arcsec, contact ratios; bevel: machine settings and the TCA of both flanks; planetary: the
+    unloaded gaps of every pair)."""
+    case: Case
+    summary: dict
+
+
+def tca(case: Case | str | Path, *, positions: int | None = None) -> TcaResult:
+    """The unloaded TCA of a gear-pair case (a Case, a case file or a shipped name). Writes and prints nothing."""
+    case = _as_case(case)
+    if case.kind == "cylindrical":
+        from .cylindrical.run import tca_summary
+        return TcaResult(case, tca_summary(case.record, positions, case.file)[0])
+    if case.kind == "bevel":
+        from .bevel.run import bevel_tca_summary
+        return TcaResult(case, bevel_tca_summary(case.record, case.file)[0])
+    if case.kind == "planetary":
+        from .planetary.run import planetary_tca_summary
+        return TcaResult(case, planetary_tca_summary(case.record, positions)[0])
+    _analysis(case.kind)          # names the command of a case that is not a gear pair
+    raise AssertionError(case.kind)

@@ -124,3 +124,14 @@ def test_readme_python_example_runs_as_written(svg_backend, capfd):
     out = capfd.readouterr().out.split()
     assert len(out) == 2 and float(out[0]) > 0 and float(out[1]) > 500     # TE ptp (arcsec), flank peak (MPa)
     assert scope["ax"].lines and matplotlib.get_backend() == svg_backend
+
+
+def test_tca_of_every_gear_kind_prints_nothing(capfd):
+    """``ltca.tca``: the unloaded analysis as a record; a conjugate spur pair has zero unloaded TE (an identity)."""
+    r = ltca.tca("fzg_c14", positions=8)
+    assert r.summary["te_unloaded_ptp_arcsec"] < 0.01 and 1.2 < r.summary["contact_ratio_transverse"] < 2.0
+    b = ltca.tca(ltca.load_case("spiral_bevel_cao2008"))
+    # the synthesis meets its target: the parabolic TE of the working flank (Cao et al. 2008: 8.25 arcsec)
+    assert b.summary["flanks"]["working"]["te_amplitude_arcsec"] == pytest.approx(8.25, rel=0.02)
+    out = capfd.readouterr()
+    assert out.out == "" and out.err == ""

@@ -79,8 +79,25 @@ def run_bevel_tca(case_path: str, out: str | None = None) -> dict:
         ``design`` (first design before the blank-offset redesign, per flank).
     """
     case = load_bevel_case(case_path)
+    summary, pair, runs = bevel_tca_summary(case, str(case_path))
+    _print_summary(case.name, summary["machine_settings"], summary["flanks"])
+    if out is not None:
+        d = Path(out)
+        d.mkdir(parents=True, exist_ok=True)
+        summary["plots"] = plot_bevel(pair, runs, d, case.name)
+        from ..outputs import write_json_atomic
+        write_json_atomic(d / "summary.json", summary)
+        (d / "settings_sheet.toml").write_text(settings_sheet_toml(pair))
+    return summary
+
+
+def bevel_tca_summary(case, file: str | None = None) -> tuple[dict, BevelPair, dict]:
+    """The pinion synthesised (or the pair cut as the case's settings sheets give it) and the TCA of both flanks
+    as mounted: (summary, pair, {"working"|"coast": (TCAResult, SeparationResult)}). Writes and prints nothing.
+
+    Raises DesignError (exit 2, naming the inputs) when the design has no solution in the cradle model."""
     try:
-        return _run_bevel_tca(case, out)
+        return _tca(case)
     except (ContactError, MeshingError, ValueError) as exc:
         # the user's design (targets, blank, cutter) has no solution in the cradle model: exit 2 naming the inputs
         side = "working" if "concave" in str(exc) else "coast" if "convex" in str(exc) else "working/coast"
@@ -91,10 +108,10 @@ def run_bevel_tca(case_path: str, out: str | None = None) -> dict:
                           (*mounted, f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
                            f"bevel.{side}.ellipse_major_mm", "bevel.spiral_angle_deg", "bevel.cutter_radius_mm"),
                           ("smaller assembly errors, or " if mounted else "") +
-                          "move the targets towards the shipped case's values", file=str(case_path)) from None
+                          "move the targets towards the shipped case's values", file=file) from None
 
 
-def _run_bevel_tca(case, out: str | None) -> dict:
+def _tca(case) -> tuple[dict, BevelPair, dict]:
     bl = design_blank(case.basic)
     if case.cuts:
         gear, pin, infos = case.cuts["gear"], case.cuts["pinion"], None
@@ -126,15 +143,7 @@ def _run_bevel_tca(case, out: str | None) -> dict:
                 for m, c in (("gear", gear), ("pinion", pin))}
     summary = dict(case=case.name, flanks=flanks, machine_settings=settings, design=design, undercut=undercut,
                    assembly=dict(E_mm=asm.E, P_mm=asm.P, G_mm=asm.G, sigma_deg=float(np.rad2deg(asm.d_sigma))))
-    _print_summary(case.name, settings, flanks)
-    if out is not None:
-        d = Path(out)
-        d.mkdir(parents=True, exist_ok=True)
-        summary["plots"] = plot_bevel(pair, runs, d, case.name)
-        from ..outputs import write_json_atomic
-        write_json_atomic(d / "summary.json", summary)
-        (d / "settings_sheet.toml").write_text(settings_sheet_toml(pair))
-    return summary
+    return summary, pair, runs
 
 
 def _ellipses(pair: BevelPair, r) -> list[np.ndarray]:

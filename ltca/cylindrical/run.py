@@ -13,19 +13,19 @@ from .loop import analyse, cycle_rolls
 from .model import build_model
 from .tca import unloaded_tca
 
-__all__ = ["run_tca", "cycle_rolls", "analyse"]
+__all__ = ["run_tca", "tca_summary", "cycle_rolls", "analyse"]
 
 
-def run_tca(case_path: str, out: str | None = None, positions: int | None = None) -> dict:
-    """Unloaded TCA of a case: TE and contact path over one mesh cycle, contact ratio."""
+def tca_summary(case, positions: int | None = None, file: str | None = None) -> tuple[dict, np.ndarray, object]:
+    """The unloaded TCA of a cylindrical case over one mesh cycle: (summary, rolls in rad, the TCA record).
+
+    Writes and prints nothing; ``summary`` has the contact ratios, the working pressure angle, the unloaded TE
+    peak-to-peak (arcsec) and the contact path per position."""
     from .warnings import check_contact, contact_ratio_transverse, design_warnings
     from ..sizing import MAX_POSITIONS
-    case = load_case(case_path)
     model = build_model(case)
-    check_contact(model, str(case_path))
+    check_contact(model, str(file or case.name))
     warnings = design_warnings(model)
-    for w in warnings:
-        print(f"ltca tca: warning: {w}", file=sys.stderr)
     n = positions or case.positions
     if n > MAX_POSITIONS:
         raise CaseError("--positions", n, f"an integer in [1, {MAX_POSITIONS}] (as analysis.positions)")
@@ -40,6 +40,17 @@ def run_tca(case_path: str, out: str | None = None, positions: int | None = None
                                                          "z_mm": r.contact_z.tolist(),
                                                          "te_arcsec": r.te_arcsec.tolist()},
             "contact_ratio_tip_circles": contact_ratio_transverse(model), "warnings": warnings}
+    return head, rolls, r
+
+
+def run_tca(case_path: str, out: str | None = None, positions: int | None = None) -> dict:
+    """``ltca tca`` of a cylindrical case file: :func:`tca_summary`, its table, and with ``out`` the summary and
+    plot."""
+    case = load_case(case_path)
+    head, rolls, r = tca_summary(case, positions, str(case_path))
+    n = head["positions"]
+    for w in head["warnings"]:
+        print(f"ltca tca: warning: {w}", file=sys.stderr)
     print(f"{case.name}: eps_alpha = {r.eps_alpha:.4f}, eps_beta = {r.eps_beta:.4f}, "
           f"alpha_wt = {head['working_pressure_angle_deg']:.4f} deg, unloaded TE ptp = "
           f"{head['te_unloaded_ptp_arcsec']:.4f} arcsec")

@@ -25,8 +25,8 @@ from .loaded import positions, prepare_satellite, solve_cycle
 from .model import build_satellite_model
 from .report import out_dir, plot_gaps, plot_load_sharing, print_table, write_csv
 
-__all__ = ["SHARE_MIN", "ROW_KEYS", "run_forming", "run_planetary_tca", "summarise", "plan", "execute", "write_files",
-           "PlanetaryPlan", "PlanetaryRun"]
+__all__ = ["SHARE_MIN", "ROW_KEYS", "run_forming", "run_planetary_tca", "planetary_tca_summary", "summarise",
+           "plan", "execute", "write_files", "PlanetaryPlan", "PlanetaryRun"]
 
 SHARE_MIN = 1e-3
 
@@ -52,9 +52,9 @@ def run_forming(case_path, out=None) -> list[dict]:
     return rows
 
 
-def run_planetary_tca(case_path, out=None, n_positions: int | None = None) -> dict:
-    """Unloaded gaps of every pair over one mesh cycle in both directions (exact, :mod:`geometry.satellite`)."""
-    case = load_planetary_case(case_path)
+def planetary_tca_summary(case, n_positions: int | None = None) -> tuple[dict, list, object]:
+    """Unloaded gaps of every pair over one mesh cycle in both directions (exact, :mod:`geometry.satellite`):
+    (summary, the pairs-within rows, the gaps record). Writes and prints nothing."""
     sm = build_satellite_model(case)
     n = n_positions or max(case.positions, 12)
     ug = unloaded_gaps(sm.mesh, n)
@@ -69,6 +69,14 @@ def run_planetary_tca(case_path, out=None, n_positions: int | None = None) -> di
                    thinning=case.design.thinning, thinning_fit=ch.thinning_fit, method=case.method,
                    first_contact_um={str(d): float(np.max(np.abs(ug.first_contact_um[d]))) for d in (1, -1)},
                    pairs_within=rows)
+    return summary, rows, (sm, ug)
+
+
+def run_planetary_tca(case_path, out=None, n_positions: int | None = None) -> dict:
+    """``ltca tca`` of a planetary case file: :func:`planetary_tca_summary`, its table, and with ``out`` the gaps
+    (CSV, plot) and the summary."""
+    case = load_planetary_case(case_path)
+    summary, rows, (sm, ug) = planetary_tca_summary(case, n_positions)
     print(f"internal pair z1 {sm.mesh.z1} / z2 {sm.mesh.z2}, e = {sm.mesh.e} mm, alpha_w = {summary['alpha_w_deg']:.3f} deg, "
           f"satellite cut by {case.method}; first contact before the involute contact: "
           f"{summary['first_contact_um']} um (0: involutes touch first)")
