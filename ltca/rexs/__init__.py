@@ -41,7 +41,7 @@ class RexsImport:
         for s in self.stages:
             if s.id == int(stage_id):
                 return s
-        raise RexsError(self.path, "stage", f"no cylindrical stage {stage_id}; the stages are "
+        raise RexsError("model", "stage", f"no cylindrical stage {stage_id}; the stages are "
                         f"{[s.id for s in self.stages]}", stage_id, self.path)
 
     def stage_dict(self, stage_id: int, torque_nm: float | list[float] | None = None) -> dict:
