@@ -36,6 +36,7 @@ class RexsImport:
     model: RexsModel
     stages: tuple[StageInfo, ...]
     unmapped: tuple[Unmapped, ...] = field(repr=False)
+    mapped: frozenset[tuple[int, str]] = field(repr=False, default=frozenset())
 
     def info(self, stage_id: int) -> StageInfo:
         for s in self.stages:
@@ -61,11 +62,17 @@ def read(path: str | Path) -> RexsImport:
     """Read a REXS model (``.rexs``, ``.rexsj`` or ``.rexsz``; REXS 1.x or 2.0) and map its cylindrical stages."""
     model = read_model(path)
     infos = tuple(stage_infos(model))
-    unmapped, read_ids = [], set()
+    unmapped, read_ids, mapped = [], set(), set()
     for s in infos:
         _, um, ids = stage_case_dict(model, s.id, s, list(s.torques_nm) or 1.0)
         unmapped += [u for u in um if u.attribute != "torque"]
         read_ids |= ids
+        left = {(u.component, u.attribute) for u in um}
+        mapped |= {(c, a) for c in ids for a in model.components[c].attributes if (c, a) not in left}
+    for c in model.of_type("external_load"):       # the torques reach the stages' load keys
+        for a in ("torque_around_u_axis", "defines_torque"):
+            if c.has(a) and any(s.torques_nm for s in infos):
+                mapped.add((c.id, a))
     seen = {(u.component, u.attribute) for u in unmapped}
     unmapped = [u for i, u in enumerate(unmapped) if (u.component, u.attribute) not in
                 {(v.component, v.attribute) for v in unmapped[:i]}]
@@ -73,7 +80,7 @@ def read(path: str | Path) -> RexsImport:
         if c.id in read_ids:
             continue
         for a in c.attributes.values():
-            if (c.id, a.id) not in seen:
+            if (c.id, a.id) not in seen and (c.id, a.id) not in mapped:
                 unmapped.append(Unmapped(c.id, c.type, a.id, a.value if not hasattr(a.value, "tag") else "<coded>",
                                          a.unit, f"{c.type} is not part of a gear pair's case"))
     for lc in model.load_cases:
@@ -82,4 +89,4 @@ def read(path: str | Path) -> RexsImport:
                 if not (c.type == "external_load" and a.id == "torque_around_u_axis"):
                     unmapped.append(Unmapped(c.id, c.type, a.id, a.value, a.unit,
                                              f"load case {lc.id}: only the torques are mapped"))
-    return RexsImport(str(path), model, infos, tuple(unmapped))
+    return RexsImport(str(path), model, infos, tuple(unmapped), frozenset(mapped))

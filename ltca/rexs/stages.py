@@ -500,7 +500,7 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
         data["material"] = mat
     else:
         unmapped.append(Unmapped(stage_id, st.type, "material", None, None,
-                                 "no material for either gear: the case's default steel is used"))
+                                 "not given: no material for either gear, the case's default steel is used"))
     torques = torque_nm if torque_nm is not None else list(info.torques_nm)
     if isinstance(torques, (int, float)):
         torques = [float(torques)]
