@@ -320,3 +320,33 @@ def test_every_stage_runs_loaded(path, stage, tmp_path):
     assert main(["run", str(tmp_path / "c.toml"), "--out", str(tmp_path / "out"), "--fidelity", "coarse",
                  "--positions", "3", "--quiet", "--paraview-steps", "0"]) == 0
     assert json.loads((tmp_path / "out" / "summary.json").read_text())["converged"]
+
+
+def test_rexs_2_0_tool_and_basic_profile(tmp_path):
+    """A REXS 2.0 model: the tool reached through a manufacturing_step from the flanks, its values relative to the
+    module or absolute (mm); the basic profile's addendum sets the tip diameter d + 2 m_n (h_aP* + x)."""
+    text = FVA2.read_text().replace('version="1.4"', 'version="2.0.0"', 1)
+    tool = ('<component id="900" name="hob" type="rack_shaped_tool">'
+            '<attribute id="addendum_reference_profile" unit="mm">6.075</attribute>'
+            '<attribute id="dedendum_coefficient_reference_profile" unit="none">1.4</attribute>'
+            '<attribute id="tip_corner_radius_factor_reference_profile" unit="none">0.3</attribute></component>'
+            '<component id="901" name="settings" type="cylindrical_gear_manufacturing_settings"/>')
+    steps = "".join(f'<relation id="{950 + k}" order="1" type="manufacturing_step"><ref id="{f}" role="workpiece"/>'
+                    f'<ref id="900" role="tool"/><ref id="901" role="manufacturing_settings"/></relation>'
+                    for k, f in enumerate((48, 49, 52, 53)))
+    text = text.replace("<components>", "<components>" + tool, 1).replace("<relations>", "<relations>" + steps, 1)
+    for flank in (48, 49):
+        anchor = f'<component id="{flank}" name="Cylindrical gear [27] ({"left" if flank == 48 else "right"} flank)"' \
+                 ' type="cylindrical_gear_flank">'
+        text = text.replace(anchor, anchor + '<attribute id="addendum_coefficient_basic_profile" unit="none">0.9'
+                                             '</attribute>', 1)
+    f = tmp_path / "v2.rexs"
+    f.write_text(text)
+    rx = rexs.read(f)
+    assert rx.model.major == 2
+    case = rx.stage(19)
+    assert case.rack_addendum == pytest.approx(6.075) and case.rack_dedendum == pytest.approx(1.4 * 4.5)
+    assert case.rack_tip_radius == pytest.approx(0.3 * 4.5)
+    d1 = 27 * 4.5 / math.cos(math.radians(21))
+    assert case.pinion.tip_diameter == pytest.approx(d1 + 2 * 4.5 * (0.9 + 0.231415), rel=1e-12)
+    assert case.gear.tip_diameter is None
