@@ -23,7 +23,7 @@ from .io import read_model, write_model
 from .model import RexsModel
 from .stages import StageInfo, Unmapped, stage_case_dict, stage_infos
 
-__all__ = ["read", "RexsImport", "StageInfo", "Unmapped", "RexsError", "read_model", "write_model"]
+__all__ = ["read", "export_results", "RexsImport", "StageInfo", "Unmapped", "RexsError", "read_model", "write_model"]
 
 
 @dataclass(frozen=True)
@@ -90,3 +90,22 @@ def read(path: str | Path) -> RexsImport:
                     unmapped.append(Unmapped(c.id, c.type, a.id, a.value, a.unit,
                                              f"load case {lc.id}: only the torques are mapped"))
     return RexsImport(str(path), model, infos, tuple(unmapped), frozenset(mapped))
+
+
+def export_results(path: str | Path, stage_id: int, run_dir: str | Path, out: str | Path,
+                   torque_nm: float | None = None) -> Path:
+    """Write the results of ``ltca run`` (``run_dir``/results.nc, the torque ``torque_nm`` or the first) of stage
+    ``stage_id`` of the REXS model ``path`` into that model, saved as ``out`` in the form it was read."""
+    import xarray as xr
+
+    from .results import results_from_dataset, write_results
+    rx = read(path)
+    info = rx.info(stage_id)
+    case = rx.stage(stage_id)
+    nc = Path(run_dir) / "results.nc"
+    if not nc.is_file():
+        raise RexsError(str(run_dir), "results.nc", "missing: the output folder of `ltca run` expected", None)
+    with xr.open_dataset(nc) as ds:
+        res = results_from_dataset(ds.load(), case, torque_nm)
+    write_results(rx.model, int(stage_id), info.pinion, info.gear, res, case.gear.teeth / case.pinion.teeth)
+    return write_model(rx.model, out)

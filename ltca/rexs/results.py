@@ -91,8 +91,13 @@ def results_from_dataset(ds, case, torque_nm: float | None = None) -> dict:
     distribution is each position's line load summed over the teeth at each face slice, per face width
     (/ cos beta_b), averaged over the positions; K_Hbeta is its largest over its mean value."""
     if "torque" in ds.dims:
-        t = float(ds["torque"].values[0]) if torque_nm is None else float(torque_nm)
-        ds = ds.sel(torque=t)
+        tq = np.asarray(ds["torque"].values, float)
+        k = 0 if torque_nm is None else int(np.argmin(np.abs(tq - float(torque_nm))))
+        if torque_nm is not None and abs(tq[k] - float(torque_nm)) > 1e-6 * max(1.0, abs(float(torque_nm))):
+            raise RexsError("results.nc", "torque", f"no analysis at {torque_nm} N m; the torques are {list(tq)}",
+                            torque_nm)
+        t = float(tq[k])
+        ds = ds.isel(torque=k)
     else:
         t = float(ds.attrs.get("torque_nm", torque_nm))
     g = _geometry(case)
