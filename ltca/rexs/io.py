@@ -268,8 +268,8 @@ def parse_json(text: str, file: str = "<json>") -> RexsModel:
                 case.components[comp.id] = comp
             load_cases.append(case)
         extra["json_spectrum_other"] = {k: v for k, v in spec.items() if k not in ("id", "load_cases")}
-    extra["json_other"] = {k: v for k, v in m.items() if k not in ("version", "applicationId", "applicationVersion",
-                                                                     "date", "relations", "components", "load_spectrum")}
+    known = ("version", "applicationId", "applicationVersion", "date", "relations", "components", "load_spectrum")
+    extra["json_other"] = {k: v for k, v in m.items() if k not in known}
     extra["json_had_spectrum"] = isinstance(spec, dict)
     return RexsModel(str(m.get("version")), m.get("applicationId"), m.get("applicationVersion"), m.get("date"),
                      relations, comps, load_cases, spectrum_id, "json", "json", file, extra)
@@ -321,7 +321,8 @@ def to_json(model: RexsModel) -> str:
     m["components"] = [_json_comp(c) for c in model.components.values()]
     if model.load_cases or model.extra.get("json_had_spectrum"):
         m["load_spectrum"] = {"id": model.spectrum_id if model.spectrum_id is not None else 1,
-                              "load_cases": [{"id": lc.id, "components": [_json_comp(c) for c in lc.components.values()]}
+                              "load_cases": [{"id": lc.id,
+                                              "components": [_json_comp(c) for c in lc.components.values()]}
                                              for lc in model.load_cases],
                               **model.extra.get("json_spectrum_other", {})}
     m.update(model.extra.get("json_other", {}))

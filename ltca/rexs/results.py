@@ -94,8 +94,8 @@ def results_from_dataset(ds, case, torque_nm: float | None = None) -> dict:
         tq = np.asarray(ds["torque"].values, float)
         k = 0 if torque_nm is None else int(np.argmin(np.abs(tq - float(torque_nm))))
         if torque_nm is not None and abs(tq[k] - float(torque_nm)) > 1e-6 * max(1.0, abs(float(torque_nm))):
-            raise RexsError("results.nc", "torque", f"no analysis at {torque_nm} N m; the torques are {[float(x) for x in tq]}",
-                            torque_nm)
+            raise RexsError("results.nc", "torque", f"no analysis at {torque_nm} N m; the torques are "
+                            f"{[float(x) for x in tq]}", torque_nm)
         t = float(tq[k])
         ds = ds.isel(torque=k)
     else:

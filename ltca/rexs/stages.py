@@ -35,8 +35,8 @@ modification_coefficient``
 
 A bevel stage (``bevel_stage`` with ``bevel_gear`` members; none in the reference samples) would map
 ``number_of_teeth``, ``mean_normal_module``/``outer_pitch_diameter``, ``mean_spiral_angle`` and
-``spiral_angle_pitch_direction``, ``face_width``, ``pitch_angle``, ``face_angle``, ``root_angle``, ``outer_cone_distance``
-and the shaft angle onto the ``[bevel]`` blank of a bevel case; it is listed as not mapped.
+``spiral_angle_pitch_direction``, ``face_width``, ``pitch_angle``, ``face_angle``, ``root_angle``,
+``outer_cone_distance`` and the shaft angle onto the ``[bevel]`` blank of a bevel case; it is listed as not mapped.
 
 Everything a stage's components carry that the case cannot hold is returned as :class:`Unmapped` with a reason.
 """
@@ -223,7 +223,7 @@ def _stage_torques(model: RexsModel, stage_gears: dict[int, tuple[int, int]]) ->
     for _label, shafts in _torque_per_load_case(model):
         force: dict[int, float] = {}                               # stage -> tangential force x (1 / m_t)
 
-        def drive(g: int, torque: float) -> None:
+        def drive(g: int, torque: float, force: dict[int, float]) -> None:
             open_ = [s for s in _stages_of_gear(model, stage_gears, g) if s not in force]
             if not open_:
                 return
@@ -241,12 +241,12 @@ def _stage_torques(model: RexsModel, stage_gears: dict[int, tuple[int, int]]) ->
             for p, fp in reached:                                  # gears on one shaft share its torque
                 for h in shaft_gears.get(_shaft_of(model, p), []) if _shaft_of(model, p) is not None else []:
                     if h != p:
-                        drive(h, fp * radius[p])
+                        drive(h, fp * radius[p], force)
 
         for shaft, t in shafts.items():
             on = shaft_gears.get(shaft, [])
             if len(on) == 1:
-                drive(on[0], t)
+                drive(on[0], t, force)
         for s, f in force.items():
             result[s].append(f * radius[stage_gears[s][0]])
     return result
@@ -272,9 +272,6 @@ def stage_infos(model: RexsModel) -> list[StageInfo]:
     torques = _stage_torques(model, stage_gears) if stage_gears else {}
     planet_of = {}
     for ps in model.of_type("planetary_stage"):
-        for r in model.relations:
-            if r.type in ("central_shaft", "planet_shaft"):
-                pass
         members = set()
         for r in model.relations:
             if any(x.id == ps.id for x in r.refs) and r.type in ("central_shaft", "planet_shaft"):
@@ -320,8 +317,7 @@ def _flank_value(model, used, gear, flanks, attr, dimension, required, default=N
     return vals[0][1]
 
 
-def _member(model, used, gear: Component, pinion_side: bool, module: float, helix_deg: float,
-            tool_values: dict, unmapped: list) -> dict:
+def _member(model, used, gear: Component, module: float, helix_deg: float, unmapped: list) -> dict:
     flanks = _flanks(model, gear.id)
     z = _teeth(gear)
     used.take(gear, "number_of_teeth", "normal_module", "helix_angle_reference_diameter", "face_width")
@@ -370,8 +366,8 @@ def _modification(model, used, mod: Component, mods: dict) -> None:
                             "the case holds one set per member", value, model.file)
         mods[key] = value
     if mod.type == "helix_crowning":
-        a = [mod.number(k, "length") for k in ("helix_crowning_amount_datum_face", "helix_crowning_amount_non_datum_face")
-             if mod.has(k)]
+        a = [mod.number(k, "length") for k in ("helix_crowning_amount_datum_face",
+                                                "helix_crowning_amount_non_datum_face") if mod.has(k)]
         if a and all(_same(v, a[0]) for v in a):
             put("lead_crowning_um", a[0] * 1e3)
             used.take(mod, "helix_crowning_amount_datum_face", "helix_crowning_amount_non_datum_face")
@@ -391,7 +387,7 @@ def _modification(model, used, mod: Component, mods: dict) -> None:
             used.take(mod, "tip_relief_datum_diameter")
 
 
-def _tool(model, used, tool: Component, module: float, unmapped_reason: str | None) -> dict:
+def _tool(tool: Component, module: float) -> dict:
     """A tool's basic-rack values as cutter keys (x module)."""
     out = {}
     for key, names in (("addendum", ("addendum_coefficient_reference_profile",)),
@@ -452,13 +448,14 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
                         alpha[1], model.file)
     data: dict = {"case": {"name": f"{st.name or 'stage'} [{stage_id}]"[:200],
                            "source": f"REXS {model.version} ({model.application_id or 'unknown'}), "
-                                     f"{model.file}: cylindrical_stage {stage_id}, gears {pin.id} and {gear.id}"[:2000]},
+                                     f"{model.file}: cylindrical_stage {stage_id}, gears {pin.id} and "
+                                     f"{gear.id}"[:2000]},
                   "gear_pair": {"module_mm": module, "pressure_angle_deg": alpha[0], "helix_angle_deg": b1}}
     # tools: the case has one cutter; the pinion's tool first, a differing value of the gear's tool is listed
     cutter, cutter_src = {}, {}
     for g in (pin, gear):
         for tool in _tools(model, g, _flanks(model, g.id)):
-            vals = _tool(model, used, tool, module, None)
+            vals = _tool(tool, module)
             attrs = vals.pop("_attrs")
             for k, v in vals.items():
                 if k.startswith("shaper") and not _internal(g):
@@ -472,8 +469,8 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
                         used.skip(tool, n, f"the case has one cutter: {cutter_src[k].label} gives {k} = {cutter[k]}")
     if cutter:
         data["cutter"] = cutter
-    data["pinion"] = _member(model, used, pin, True, module, b1, cutter, unmapped)
-    data["gear"] = _member(model, used, gear, False, module, b2, cutter, unmapped)
+    data["pinion"] = _member(model, used, pin, module, b1, unmapped)
+    data["gear"] = _member(model, used, gear, module, b2, unmapped)
     if st.has("center_distance"):
         data["assembly"] = {"centre_distance_mm": st.number("center_distance", "length")}
         used.take(st, "center_distance")
@@ -483,7 +480,7 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
             used.take(st, "common_face_width")
     mats = [_material(model, g) for g in (pin, gear)]
     mat = {}
-    for g, mc in zip((pin, gear), mats):
+    for mc in mats:
         if mc is None:
             continue
         for key, attr, dim in (("youngs_modulus_mpa", "elastic_modulus", "stress"), ("poisson_ratio", "poisson_ratio",
