@@ -349,3 +349,18 @@ def test_rexs_2_0_tool_and_basic_profile(tmp_path):
     d1 = 27 * 4.5 / math.cos(math.radians(21))
     assert case.pinion.tip_diameter == pytest.approx(d1 + 2 * 4.5 * (0.9 + 0.231415), rel=1e-12)
     assert case.gear.tip_diameter is None
+
+
+def test_byte_order_mark_and_unreadable_files(tmp_path):
+    bom = tmp_path / "bom.rexsj"
+    bom.write_bytes(b"\xef\xbb\xbf" + FVA2.with_suffix(".rexsj").read_bytes())
+    assert _same_case(rexs.read(bom).stage(19), rexs.read(FVA2).stage(19))
+    for name, body, what in (("cut.rexs", FVA2.read_bytes()[:5000], "malformed XML"),
+                             ("cut.rexsj", b'{"model": {"version": "1.4", "components": [', "malformed JSON"),
+                             ("other.rexs", b"<gear/>", "<model> expected"),
+                             ("latin.rexs", "<model version='1.4' date='\u00e9'/>".encode("latin-1"), "not UTF-8")):
+        (tmp_path / name).write_bytes(body)
+        with pytest.raises(RexsError, match=what):
+            rexs.read(tmp_path / name)
+    with pytest.raises(RexsError, match="cannot read"):
+        rexs.read(tmp_path / "absent.rexs")
