@@ -4,6 +4,7 @@ result components.
     model.py     the in-memory model: components, attributes with units, relations, load cases
     io.py        reading and writing the XML (.rexs), JSON (.rexsj) and zipped (.rexsz) forms, REXS 1.x and 2.0
     units.py     declared units -> mm, deg, N m, MPa
+    train.py     a stage's related components (flanks, tools, material, shaft) and the torques through the train
     stages.py    cylindrical stages (and the sun-planet / planet-ring pairs of a planetary stage) -> case dicts
     results.py   our results -> REXS result attributes and components
     schema.py    a checker of attribute ids, units and value types against the REXS 2.0.0 schema

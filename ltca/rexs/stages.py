@@ -47,16 +47,10 @@ from dataclasses import dataclass
 
 from .errors import RexsError
 from .model import Component, RexsModel
+from .train import (GEAR_TYPES, MOD_TYPES, flanks_of, material_of, modifications_of, shaft_of, stage_gears_of,
+                    stage_torques, teeth_of, tools_of)
 
 __all__ = ["Unmapped", "StageInfo", "stage_infos", "stage_case_dict", "GEAR_TYPES"]
-
-GEAR_TYPES = ("cylindrical_gear", "ring_gear")
-_FLANK_TYPES = ("cylindrical_gear_flank", "flank_geometry")
-_TOOL_TYPES = ("rack_shaped_tool", "cutter_wheel_tool", "profile_tool")
-_MOD_TYPES = ("helix_crowning", "helix_slope", "profile_crowning", "tip_relief", "profile_slope",
-              "end_relief_datum_face", "end_relief_non_datum_face", "triangular_tip_relief", "root_relief",
-              "triangular_root_relief", "profile_twist", "topographical_modification", "helix_deviation",
-              "profile_deviation")
 
 
 @dataclass(frozen=True)
@@ -98,160 +92,6 @@ class _Used:
         self.reasons[(c.id, attr)] = reason
 
 
-# ------------------------------------------------------------------------------------------ relations
-def _stage_relation(model: RexsModel, sid: int):
-    rel = [r for r in model.relations_of("stage", sid, "stage")]
-    st = model.component(sid)
-    if not rel:
-        raise RexsError(st.label, "-", "no 'stage' relation names the gears of this stage (missing gear)",
-                        None, model.file)
-    r = rel[0]
-    g1, g2 = r.role("gear_1"), r.role("gear_2")
-    for role, g in (("gear_1", g1), ("gear_2", g2)):
-        if g is None:
-            raise RexsError(st.label, role, f"missing gear: the stage relation {r.id} has no {role}", None, model.file)
-        if g not in model.components:
-            raise RexsError(st.label, role, f"missing gear: the stage relation {r.id} names component {g}, which "
-                            "the model does not contain", g, model.file)
-        if model.components[g].type not in GEAR_TYPES:
-            raise RexsError(st.label, role, f"component {g} is a {model.components[g].type}, a cylindrical_gear "
-                            "or ring_gear expected", g, model.file)
-    return g1, g2
-
-
-def _related(model: RexsModel, rtype: str, cid: int, role: str, other_role: str) -> list[Component]:
-    out = []
-    for r in model.relations_of(rtype, cid, role):
-        o = r.role(other_role)
-        if o is not None and o in model.components:
-            out.append(model.components[o])
-    return out
-
-
-def _flanks(model: RexsModel, gid: int) -> tuple[Component | None, Component | None]:
-    for r in model.relations_of("flank", gid, "gear"):
-        left, right = r.role("left"), r.role("right")
-        return (model.components.get(left), model.components.get(right))
-    return None, None
-
-
-def _tools(model: RexsModel, gear: Component, flanks) -> list[Component]:
-    tools = [c for c in _related(model, "ordered_reference", gear.id, "origin", "referenced") if c.type in _TOOL_TYPES]
-    tools += [c for c in _related(model, "reference", gear.id, "origin", "referenced") if c.type in _TOOL_TYPES]
-    for f in flanks:
-        if f is not None:
-            tools += [c for c in _related(model, "manufacturing_step", f.id, "workpiece", "tool")]
-    seen, out = set(), []
-    for t in tools:
-        if t.id not in seen:
-            seen.add(t.id)
-            out.append(t)
-    return out
-
-
-def _shaft_of(model: RexsModel, cid: int) -> int | None:
-    for r in model.relations_of("assembly", cid, "part"):
-        a = r.role("assembly")
-        if a is not None and a in model.components and model.components[a].type == "shaft":
-            return a
-    return None
-
-
-def _material(model: RexsModel, gear: Component) -> Component | None:
-    mats = [c for c in _related(model, "reference", gear.id, "origin", "referenced") if c.type == "material"]
-    if not mats:
-        shaft = _shaft_of(model, gear.id)
-        if shaft is not None:
-            mats = [c for c in _related(model, "reference", shaft, "origin", "referenced") if c.type == "material"]
-    return mats[0] if mats else None
-
-
-def _modifications(model: RexsModel, flank: Component | None) -> list[Component]:
-    if flank is None:
-        return []
-    return [c for c in _related(model, "reference", flank.id, "origin", "referenced") if c.type in _MOD_TYPES]
-
-
-# ------------------------------------------------------------------------------------------ torques
-def _teeth(c: Component) -> int:
-    return abs(c.integer("number_of_teeth"))
-
-
-def _stages_of_gear(model: RexsModel, stage_gears: dict[int, tuple[int, int]], gid: int) -> list[int]:
-    return [s for s, (a, b) in stage_gears.items() if gid in (a, b)]
-
-
-def _torque_per_load_case(model: RexsModel) -> list[tuple[str, dict[int, float]]]:
-    """(load case label, {shaft id: torque N m}) from the external loads that define a torque."""
-    loads = [c for c in model.of_type("external_load")]
-    defining = [c for c in loads if c.has("defines_torque") and c.boolean("defines_torque")]
-    cases = [(f"load case {lc.id}", lc) for lc in model.load_cases] or [("model", None)]
-    out = []
-    for label, lc in cases:
-        shafts = {}
-        for c in defining:
-            src = lc.components.get(c.id) if lc is not None else None
-            comp = src if src is not None and src.has("torque_around_u_axis") else c
-            if not comp.has("torque_around_u_axis"):
-                continue
-            t = comp.number("torque_around_u_axis", "torque")
-            shaft = _shaft_of(model, c.id)
-            if shaft is not None and t != 0.0:
-                shafts[shaft] = abs(t)
-        out.append((label, shafts))
-    return out
-
-
-def _stage_torques(model: RexsModel, stage_gears: dict[int, tuple[int, int]]) -> dict[int, list[float]]:
-    """Torque (N m) on each stage's gear_1 per load case, carried from the torque-defining loads through the gear
-    train without losses: a gear's torque is shared by the stages it meshes in side by side (a sun among its
-    planets); the tangential force passes unchanged through an idler (a planet between sun and ring); gears on one
-    shaft share the shaft's torque."""
-    gears = {g for pair in stage_gears.values() for g in pair}
-    radius = {g: _teeth(model.components[g]) for g in gears}       # tangential force ~ torque / z (same m_t)
-    shaft_gears: dict[int, list[int]] = {}
-    for g in gears:
-        s = _shaft_of(model, g)
-        if s is not None:
-            shaft_gears.setdefault(s, []).append(g)
-    result: dict[int, list[float]] = {s: [] for s in stage_gears}
-
-    def other(s: int, g: int) -> int:
-        a, b = stage_gears[s]
-        return b if a == g else a
-
-    for _label, shafts in _torque_per_load_case(model):
-        force: dict[int, float] = {}                               # stage -> tangential force x (1 / m_t)
-
-        def drive(g: int, torque: float, force: dict[int, float]) -> None:
-            open_ = [s for s in _stages_of_gear(model, stage_gears, g) if s not in force]
-            if not open_:
-                return
-            f = torque / radius[g] / len(open_)
-            frontier, reached = [], []
-            for s in open_:
-                force[s] = f
-                frontier.append((other(s, g), f))
-            while frontier:                                        # idlers pass the same force on
-                p, fp = frontier.pop(0)
-                for t in [t for t in _stages_of_gear(model, stage_gears, p) if t not in force]:
-                    force[t] = fp
-                    frontier.append((other(t, p), fp))
-                reached.append((p, fp))
-            for p, fp in reached:                                  # gears on one shaft share its torque
-                for h in shaft_gears.get(_shaft_of(model, p), []) if _shaft_of(model, p) is not None else []:
-                    if h != p:
-                        drive(h, fp * radius[p], force)
-
-        for shaft, t in shafts.items():
-            on = shaft_gears.get(shaft, [])
-            if len(on) == 1:
-                drive(on[0], t, force)
-        for s, f in force.items():
-            result[s].append(f * radius[stage_gears[s][0]])
-    return result
-
-
 # ------------------------------------------------------------------------------------------ stage list
 def _pinion_first(model: RexsModel, g1: int, g2: int) -> tuple[int, int]:
     c1 = model.components[g1]
@@ -268,8 +108,8 @@ def stage_infos(model: RexsModel) -> list[StageInfo]:
     """Every cylindrical stage of the model (by component id), with its pinion torques per load case."""
     stage_gears = {}
     for st in model.of_type("cylindrical_stage"):
-        stage_gears[st.id] = _stage_relation(model, st.id)
-    torques = _stage_torques(model, stage_gears) if stage_gears else {}
+        stage_gears[st.id] = stage_gears_of(model, st.id)
+    torques = stage_torques(model, stage_gears) if stage_gears else {}
     planet_of = {}
     for ps in model.of_type("planetary_stage"):
         members = set()
@@ -277,14 +117,14 @@ def stage_infos(model: RexsModel) -> list[StageInfo]:
             if any(x.id == ps.id for x in r.refs) and r.type in ("central_shaft", "planet_shaft"):
                 members.update(g for g in (r.role("shaft"),) if g is not None)
         for s, (a, b) in stage_gears.items():
-            if _shaft_of(model, a) in members or _shaft_of(model, b) in members:
+            if shaft_of(model, a) in members or shaft_of(model, b) in members:
                 planet_of[s] = ps.id
     out = []
     for s, (g1, g2) in stage_gears.items():
         p, g = _pinion_first(model, g1, g2)
         tq = torques.get(s, [])
         if p != g1:      # the torque was carried to gear_1; the case's pinion is gear_2 (gear_1 is the ring)
-            tq = [t * _teeth(model.components[p]) / _teeth(model.components[g1]) for t in tq]
+            tq = [t * teeth_of(model.components[p]) / teeth_of(model.components[g1]) for t in tq]
         out.append(StageInfo(s, model.components[s].name, p, g, _internal(model.components[g]), planet_of.get(s),
                              tuple(tq)))
     return out
@@ -318,8 +158,8 @@ def _flank_value(model, used, gear, flanks, attr, dimension, required, default=N
 
 
 def _member(model, used, gear: Component, module: float, helix_deg: float, unmapped: list) -> dict:
-    flanks = _flanks(model, gear.id)
-    z = _teeth(gear)
+    flanks = flanks_of(model, gear.id)
+    z = teeth_of(gear)
     used.take(gear, "number_of_teeth", "normal_module", "helix_angle_reference_diameter", "face_width")
     m: dict = {"teeth": z, "face_width_mm": gear.number("face_width", "length")}
     if _internal(gear):
@@ -351,7 +191,7 @@ def _member(model, used, gear: Component, module: float, helix_deg: float, unmap
     if chamfer:
         mods["tip_chamfer_mm"] = chamfer
     for f in flanks:
-        for mod in _modifications(model, f):
+        for mod in modifications_of(model, f):
             _modification(model, used, mod, mods)
     if mods:
         m["modifications"] = mods
@@ -441,7 +281,7 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
         raise RexsError(gear.label, "helix_angle_reference_diameter",
                         f"must be {want} deg to mesh with {pin.label} ({'same' if info.internal else 'opposite'} "
                         "hand)", b2, model.file)
-    alpha = [_flank_value(model, used, g, _flanks(model, g.id), "normal_pressure_angle", "angle", True)
+    alpha = [_flank_value(model, used, g, flanks_of(model, g.id), "normal_pressure_angle", "angle", True)
              for g in (pin, gear)]
     if not _same(alpha[0], alpha[1]):
         raise RexsError(gear.label, "normal_pressure_angle", f"differs from the mating gear's {alpha[0]} deg",
@@ -454,7 +294,7 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
     # tools: the case has one cutter; the pinion's tool first, a differing value of the gear's tool is listed
     cutter, cutter_src = {}, {}
     for g in (pin, gear):
-        for tool in _tools(model, g, _flanks(model, g.id)):
+        for tool in tools_of(model, g, flanks_of(model, g.id)):
             vals = _tool(tool, module)
             attrs = vals.pop("_attrs")
             for k, v in vals.items():
@@ -478,7 +318,7 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
         bc = st.number("common_face_width", "length")
         if _same(bc, min(data["pinion"]["face_width_mm"], data["gear"]["face_width_mm"])):
             used.take(st, "common_face_width")
-    mats = [_material(model, g) for g in (pin, gear)]
+    mats = [material_of(model, g) for g in (pin, gear)]
     mat = {}
     for mc in mats:
         if mc is None:
@@ -507,9 +347,9 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
                         "(give one with --torque)", None, model.file)
     data["load"] = {"torque_nm": torques[0] if len(torques) == 1 else torques}
     # everything else the stage's components carry
-    comps = [st, pin, gear] + [f for g in (pin, gear) for f in _flanks(model, g.id) if f is not None]
-    comps += [t for g in (pin, gear) for t in _tools(model, g, _flanks(model, g.id))]
-    comps += [m for f in comps[3:] for m in _modifications(model, f)]
+    comps = [st, pin, gear] + [f for g in (pin, gear) for f in flanks_of(model, g.id) if f is not None]
+    comps += [t for g in (pin, gear) for t in tools_of(model, g, flanks_of(model, g.id))]
+    comps += [m for f in comps[3:] for m in modifications_of(model, f)]
     comps += [m for m in mats if m is not None]
     for r in model.relations_of("stage_gear_data", stage_id, "stage"):
         sgd = r.role("stage_gear_data")
@@ -535,6 +375,6 @@ def _why(c: Component, attr: str) -> str:
         return "placement in the gear unit: the case models the pair alone"
     if c.type == "material":
         return "material property the linear-elastic analysis does not use"
-    if c.type in _MOD_TYPES:
+    if c.type in MOD_TYPES:
         return f"flank modification {c.type} has no case key"
     return "no case key for this attribute"
