@@ -2,7 +2,7 @@
 result components.
 
     model.py     the in-memory model: components, attributes with units, relations, load cases
-    io.py        reading and writing the XML (.rexs), JSON (.rexsj) and zipped (.rexsz) forms, REXS 1.x and 2.0
+    io.py        reading and writing a file in its form: XML (.rexs, xml_form.py), JSON (.rexsj, json_form.py), zip (.rexsz)
     units.py     declared units -> mm, deg, N m, MPa
     train.py     a stage's related components (flanks, tools, material, shaft) and the torques through the train
     stages.py    cylindrical stages (and the sun-planet / planet-ring pairs of a planetary stage) -> case dicts
