@@ -147,34 +147,28 @@ def test_every_stage_builds_a_model_and_meshes(path):
 
 
 # ------------------------------------------------------------------------------- loaded run and write-back
-@pytest.fixture(scope="module")
-def sun_planet_run(tmp_path_factory):
-    """The planetary sun-planet pair (spur, b 50 mm) at coarse fidelity, 3 positions, through the case file that
-    `ltca import` writes and `ltca run`."""
-    from ltca.cli import main
-    d = tmp_path_factory.mktemp("rexs_run")
-    assert main(["import", str(PLANET), "--stage", "211", "--out", str(d / "s211.toml")]) == 0
-    assert main(["run", str(d / "s211.toml"), "--out", str(d / "out"), "--fidelity", "coarse", "--positions", "3",
-                 "--quiet", "--paraview-steps", "0"]) == 0
-    return d
+#: the sun-planet pair (stage 211) at coarse fidelity, 3 positions: `ltca import` then `ltca run` (the commands in
+#: tests/reference/rexs/SOURCE.md); the fast test takes its results.nc and summary.json as input, the slow test runs
+#: them anew
+SUN_PLANET_RUN = HERE / "sun_planet_211_coarse"
 
 
-def test_results_written_read_back_and_schema_valid(sun_planet_run, tmp_path):
+def _check_write_back(run_dir: Path, tmp_path: Path) -> None:
     import xarray as xr
     from ltca.rexs.results import read_results, results_from_dataset, write_results
     for src in (PLANET, PLANET.with_suffix(".rexsj")):
         rx = rexs.read(src)
         case = rx.stage(211)
-        with xr.open_dataset(sun_planet_run / "out" / "results.nc") as ds:
+        with xr.open_dataset(run_dir / "results.nc") as ds:
             res = results_from_dataset(ds.load(), case)
-        summary = json.loads((sun_planet_run / "out" / "summary.json").read_text())
+        summary = json.loads((run_dir / "summary.json").read_text())
         # the tooth loads add up to the normal force of the torque, T / (r_b1 cos beta_b), at every position
         rb1 = 0.5 * 17 * 4.0 * math.cos(math.radians(20))
         dz = res["face_mm"][1] - res["face_mm"][0]
         assert res["load_distribution_n_per_mm"].sum() * dz == pytest.approx(summary["torque_nm"] * 1e3 / rb1,
                                                                              rel=1e-3)
         # a spur pair without misalignment carries its load nearly uniformly over the face (K_Hbeta = 1 ideally)
-        assert 1.0 <= res["face_load_factor"] < 1.25
+        assert 1.0 <= res["face_load_factor"] < 1.1
         assert np.nanmax(res["root_stress_mpa"]["pinion"]) == pytest.approx(summary["max_root_stress_mpa"]["pinion"],
                                                                             rel=1e-6)
         written = write_results(rx.model, 211, 53, 247, res, 22 / 17)
@@ -202,6 +196,19 @@ def test_results_written_read_back_and_schema_valid(sun_planet_run, tmp_path):
         n = len(again.model.components)
         write_results(again.model, 211, 53, 247, res, 22 / 17)
         assert len(again.model.components) == n
+
+
+def test_results_written_read_back_and_schema_valid(tmp_path):
+    _check_write_back(SUN_PLANET_RUN, tmp_path)
+
+
+@pytest.mark.slow
+def test_sun_planet_runs_and_writes_back(tmp_path):
+    from ltca.cli import main
+    assert main(["import", str(PLANET), "--stage", "211", "--out", str(tmp_path / "s211.toml")]) == 0
+    assert main(["run", str(tmp_path / "s211.toml"), "--out", str(tmp_path / "out"), "--fidelity", "coarse",
+                 "--positions", "3", "--quiet", "--paraview-steps", "0"]) == 0
+    _check_write_back(tmp_path / "out", tmp_path)
 
 
 # ------------------------------------------------------------------------------- units, modifications
