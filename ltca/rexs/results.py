@@ -87,7 +87,8 @@ def hertz_line_load(p0: np.ndarray, diameter: np.ndarray, case) -> np.ndarray:
 def results_from_dataset(ds, case, torque_nm: float | None = None) -> dict:
     """The writer's mapping from a run's dataset (``results.nc`` of ``ltca run``, or one torque's position dataset)
     of ``case``. The line load along each contact line has the shape the peak pressure on the flank lattice gives
-    through Hertz (:func:`hertz_line_load`) and the tooth's normal load (``pair_load``) as its integral; the load
+    through Hertz (:func:`hertz_line_load`; an edge contact's peak above the position's flank peak counted at the
+    flank peak) and the tooth's normal load (``pair_load``) as its integral; the load
     distribution is each position's line load summed over the teeth at each face slice, per face width
     (/ cos beta_b), averaged over the positions; K_Hbeta is its largest over its mean value."""
     if "torque" in ds.dims:
@@ -98,6 +99,8 @@ def results_from_dataset(ds, case, torque_nm: float | None = None) -> dict:
                             f"{[float(x) for x in tq]}", torque_nm)
         t = float(tq[k])
         ds = ds.isel(torque=k)
+    elif "torque" in ds.coords:
+        t = float(ds["torque"].values)
     else:
         t = float(ds.attrs.get("torque_nm", torque_nm))
     g = _geometry(case)
@@ -106,7 +109,10 @@ def results_from_dataset(ds, case, torque_nm: float | None = None) -> dict:
     u = np.radians(np.asarray(ds["flank_roll"].values, float))
     diam = 2 * g["rb1"] * np.sqrt(1 + u ** 2)
     face = np.asarray(ds["face"].values, float)
-    w = hertz_line_load(p, diam[None, None, :, None], case)       # N/mm along the line, at each lattice point
+    # the line load's shape: Hertz from the lattice pressure, an edge contact's peak (above the position's flank
+    # peak) counted at the flank peak; the written Hertzian stress is the lattice pressure itself
+    cap = np.asarray(ds["max_flank_pressure"].values, float)[:, None, None, None] if "max_flank_pressure" in ds else p
+    w = hertz_line_load(np.minimum(p, cap), diam[None, None, :, None], case)   # N/mm along the line
     # each tooth's line load scaled to its normal load (pair_load, exact): F = sum_slices w dz / cos beta_b
     dz = float(face[1] - face[0]) if len(face) > 1 else float(case.pinion.face_width)
     line = w.max(axis=2)                                          # (position, tooth, face)
