@@ -371,3 +371,17 @@ def test_byte_order_mark_and_unreadable_files(tmp_path):
             rexs.read(tmp_path / name)
     with pytest.raises(RexsError, match="cannot read"):
         rexs.read(tmp_path / "absent.rexs")
+
+
+def test_torque_record_finds_an_imported_torque():
+    """An imported torque has many digits (530.516476972984 N m per planet mesh); summary.json rounds it to 6
+    decimals and the torques of a run are not sorted: its record is still found."""
+    import xarray as xr
+    from ltca.cylindrical.sweep import torque_record
+    tq = [530.516476972984, 100.25]
+    ds = xr.Dataset({"te_loaded_ptp_um": ("torque", [8.45, 1.74]),
+                     "te_mesh_harmonic": (("torque", "mesh_order"), [[1.0, 2.0], [3.0, 4.0]]),
+                     "te_mesh_harmonic_um": (("torque", "mesh_order"), [[0.1, 0.2], [0.3, 0.4]])},
+                    coords={"torque": tq})
+    assert torque_record(ds, {"torque_nm": round(tq[0], 6)})["te_loaded_ptp_um"] == 8.45
+    assert torque_record(ds, {"torque_nm": 100.25})["te_mesh_harmonics_um"] == [0.3, 0.4]
