@@ -9,6 +9,6 @@ DATA_DIRS = {"ltca.cases": "cases", "ltca.cases.crosscheck": "cases/crosscheck",
 setup(
     packages=find_packages(include=["geometry*", "fem*", "ltca*"]) + list(DATA_DIRS),
     package_dir=DATA_DIRS,
-    package_data={"ltca.cylindrical": ["templates/*.j2"], "ltca.bevel": ["templates/*.j2"],
+    package_data={"ltca.cylindrical": ["templates/*.j2"], "ltca.bevel": ["templates/*.j2"], "ltca.rexs": ["data/*"],
                   **{pkg: ["*.toml"] for pkg in DATA_DIRS}},
 )

@@ -1,4 +1,4 @@
-"""The ``ltca`` command: run, tca, forming, study, optimise, convergence, validate, bench, budget, chain.
+"""The ``ltca`` command: run, tca, import, forming, study, optimise, convergence, validate, bench, budget, chain.
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
@@ -158,6 +158,11 @@ def _cmd_optimise(a: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_import(a: argparse.Namespace) -> int:
+    from .rexs.cli import import_command
+    return import_command(a.file, stage=a.stage, out=a.out, list_only=a.list, torque=a.torque)
+
+
 def _cmd_keys(a: argparse.Namespace) -> int:
     from .keys import keys_markdown, keys_text, kind_json_schema
     if a.json_schema:
@@ -223,6 +228,19 @@ def build_parser() -> argparse.ArgumentParser:
                         "positions: all (default 10; FZG C14: about 0.15 s and 1.3 MB per position)")
     r.add_argument("--quiet", action="store_true", help="no progress output")
     r.set_defaults(func=_cmd_run)
+
+    im = sub.add_parser("import", help="a gear stage of a REXS model (.rexs, .rexsj, .rexsz) as a case file",
+                        description="Reads a REXS model (XML .rexs, JSON .rexsj or zipped .rexsz; REXS 1.x or 2.0) "
+                                    "and writes one cylindrical stage as a TOML case that `ltca run` accepts; "
+                                    "--list lists the stages and what the file holds that a case cannot.")
+    im.add_argument("file", help="REXS model file")
+    im.add_argument("--stage", type=int, help="component id of the cylindrical_stage to import")
+    im.add_argument("--out", help="case file to write (default: print the case)")
+    im.add_argument("--list", action="store_true", help="list the stages (id, gears, torques) and the unmapped "
+                                                        "attributes")
+    im.add_argument("--torque", type=float, nargs="+", metavar="NM",
+                    help="pinion torque(s) in N m, replacing the torques of the model's load cases")
+    im.set_defaults(func=_cmd_import)
 
     k = sub.add_parser("keys", help="reference of every case key: unit, default, allowed range, meaning",
                        description="Prints every key of the case files of every kind (cylindrical, bevel, "

@@ -102,7 +102,7 @@ def torque_record(ds: xr.Dataset, head: dict) -> dict:
     by every torque, such as the model size and fidelity, left out) plus TE in um and its harmonics, read from the
     run dataset ``ds`` at that torque."""
     t = head["torque_nm"]
-    d = ds.sel(torque=t)
+    d = ds.isel(torque=int(np.argmin(np.abs(ds["torque"].values - t))))   # head["torque_nm"] is rounded (6 decimals)
     rec = {k: v for k, v in head.items() if k not in ("case", "teeth_modelled", "dofs", "fidelity", "positions")}
     rec["te_loaded_ptp_um"] = _num(d.te_loaded_ptp_um)
     rec["te_mesh_harmonics_arcsec"] = [_num(v) for v in d.te_mesh_harmonic.values]
