@@ -44,7 +44,7 @@ def test_sample_imports_every_stage_and_lists_every_attribute(path):
     assert {s.id: None for s in rx.stages}.keys() == STAGES[path.stem].keys()
     for s in rx.stages:
         z1, z2, m = STAGES[path.stem][s.id]
-        case = rx.stage(s.id)
+        case = rx.stage_record(s.id)
         assert (case.pinion.teeth, case.gear.teeth, case.module) == (z1, z2, m)
         assert case.gear.internal == (s.id >= 220 and path.stem == PLANET.stem)
         assert case.torques and all(t > 0 for t in case.torques)
@@ -61,7 +61,7 @@ def test_xml_and_json_forms_give_identical_cases(stem):
     x, j = rexs.read(HERE / f"{stem}.rexs"), rexs.read(HERE / f"{stem}.rexsj")
     assert [s.id for s in x.stages] == [s.id for s in j.stages]
     for s in x.stages:
-        assert _same_case(x.stage(s.id), j.stage(s.id))
+        assert _same_case(x.stage_record(s.id), j.stage_record(s.id))
 
 
 def test_zipped_form_reads_and_writes(tmp_path):
@@ -70,11 +70,11 @@ def test_zipped_form_reads_and_writes(tmp_path):
         zf.write(FVA2, "model.rexs")
         zf.writestr("notes.txt", "kept")
     rx = rexs.read(z)
-    assert rx.model.form == "zip" and _same_case(rx.stage(20), rexs.read(FVA2).stage(20))
+    assert rx.model.form == "zip" and _same_case(rx.stage_record(20), rexs.read(FVA2).stage_record(20))
     out = write_model(rx.model, tmp_path / "again.rexsz")
     with zipfile.ZipFile(out) as zf:
         assert sorted(zf.namelist()) == ["model.rexs", "notes.txt"]
-    assert _same_case(rexs.read(out).stage(19), rx.stage(19))
+    assert _same_case(rexs.read(out).stage_record(19), rx.stage_record(19))
 
 
 def test_torques_follow_the_gear_train():
@@ -109,7 +109,7 @@ def test_derived_geometry_agrees_with_the_file(path):
         data.pop("assembly")                                   # our zero-backlash working centre distance
         model = build_model(parse_case(data))
         assert round(model.pair.a, _digits(text)) == pytest.approx(a_file, abs=1e-9), (s.id, model.pair.a)
-        case = rx.stage(s.id)
+        case = rx.stage_record(s.id)
         st = rx.model.components[s.id]
         if st.has("common_face_width"):
             assert st.number("common_face_width", "length") == min(case.pinion.face_width, case.gear.face_width)
@@ -117,7 +117,7 @@ def test_derived_geometry_agrees_with_the_file(path):
 
 def test_implausible_tip_diameter_is_listed_not_used():
     rx = rexs.read(FVA2)
-    assert rx.stage(20).pinion.tip_diameter is None           # 'tip_diameter' = 1 mm on a 151.8 mm gear
+    assert rx.stage_record(20).pinion.tip_diameter is None           # 'tip_diameter' = 1 mm on a 151.8 mm gear
     bad = [u for u in rx.stage_unmapped(20) if u.attribute == "tip_diameter"]
     assert len(bad) == 1 and bad[0].component == 16 and "implausible" in bad[0].reason
 
@@ -132,7 +132,7 @@ def test_every_stage_builds_a_model_and_meshes(path):
     from ltca.cylindrical.warnings import check_contact
     rx = rexs.read(path)
     for s in rx.stages:
-        case = rx.stage(s.id)
+        case = rx.stage_record(s.id)
         model = build_model(case)
         check_contact(model, path.name)
         r = unloaded_tca(model, cycle_rolls(6, case.pinion.teeth))
@@ -158,7 +158,7 @@ def _check_write_back(run_dir: Path, tmp_path: Path) -> None:
     from ltca.rexs.results import read_results, results_from_dataset, write_results
     for src in (PLANET, PLANET.with_suffix(".rexsj")):
         rx = rexs.read(src)
-        case = rx.stage(211)
+        case = rx.stage_record(211)
         with xr.open_dataset(run_dir / "results.nc") as ds:
             res = results_from_dataset(ds.load(), case)
         summary = json.loads((run_dir / "summary.json").read_text())
@@ -184,7 +184,7 @@ def _check_write_back(run_dir: Path, tmp_path: Path) -> None:
         assert after <= before                     # (the 1.x stage_gear_data written is now the 2.0 type)
         # the same case and the same result values
         for s in rx.stages:
-            assert _same_case(again.stage(s.id), rexs.read(src).stage(s.id))
+            assert _same_case(again.stage_record(s.id), rexs.read(src).stage_record(s.id))
         back = read_results(again.model, 211, 53, 247)
         for key, v in res.items():
             if isinstance(v, dict):
@@ -227,7 +227,7 @@ def test_declared_units_are_converted(tmp_path):
               f'<attribute id="helix_angle_reference_diameter" unit="rad">{math.radians(21)!r}</attribute>', "e2.rexs")
     f = _edit(f, tmp_path, '<attribute id="torque_around_u_axis" unit="N m">567</attribute>',
               '<attribute id="torque_around_u_axis" unit="N mm">567000</attribute>', "e3.rexs")
-    a, b = rexs.read(f).stage(19), rexs.read(FVA2).stage(19)
+    a, b = rexs.read(f).stage_record(19), rexs.read(FVA2).stage_record(19)
     assert a.module == pytest.approx(b.module, rel=1e-15) and a.helix_angle == pytest.approx(b.helix_angle, rel=1e-15)
     assert a.torques == pytest.approx(b.torques, rel=1e-15)
 
@@ -308,7 +308,7 @@ def test_cli_import_lists_writes_and_fails_with_status_2(tmp_path, capsys):
     assert main(["import", str(SEW), "--list"]) == 0
     assert "stage 37" in capsys.readouterr().out
     assert main(["import", str(SEW), "--stage", "55", "--out", str(tmp_path / "c.toml"), "--torque", "80"]) == 0
-    assert _same_case(load_case(tmp_path / "c.toml"), rexs.read(SEW).stage(55, 80.0))
+    assert _same_case(load_case(tmp_path / "c.toml"), rexs.read(SEW).stage_record(55, 80.0))
     assert main(["import", str(SEW), "--stage", "99"]) == 2
     assert "no cylindrical stage 99" in capsys.readouterr().err
     broken = _edit(FVA2, tmp_path, '<attribute id="normal_module" unit="mm">4.5</attribute>', "")
@@ -350,7 +350,7 @@ def test_rexs_2_0_tool_and_basic_profile(tmp_path):
     f.write_text(text)
     rx = rexs.read(f)
     assert rx.model.major == 2
-    case = rx.stage(19)
+    case = rx.stage_record(19)
     assert case.rack_addendum == pytest.approx(6.075) and case.rack_dedendum == pytest.approx(1.4 * 4.5)
     assert case.rack_tip_radius == pytest.approx(0.3 * 4.5)
     d1 = 27 * 4.5 / math.cos(math.radians(21))
@@ -361,7 +361,7 @@ def test_rexs_2_0_tool_and_basic_profile(tmp_path):
 def test_byte_order_mark_and_unreadable_files(tmp_path):
     bom = tmp_path / "bom.rexsj"
     bom.write_bytes(b"\xef\xbb\xbf" + FVA2.with_suffix(".rexsj").read_bytes())
-    assert _same_case(rexs.read(bom).stage(19), rexs.read(FVA2).stage(19))
+    assert _same_case(rexs.read(bom).stage_record(19), rexs.read(FVA2).stage_record(19))
     for name, body, what in (("cut.rexs", FVA2.read_bytes()[:5000], "malformed XML"),
                              ("cut.rexsj", b'{"model": {"version": "1.4", "components": [', "malformed JSON"),
                              ("other.rexs", b"<gear/>", "<model> expected"),
@@ -385,3 +385,11 @@ def test_torque_record_finds_an_imported_torque():
                     coords={"torque": tq})
     assert torque_record(ds, {"torque_nm": round(tq[0], 6)})["te_loaded_ptp_um"] == 8.45
     assert torque_record(ds, {"torque_nm": 100.25})["te_mesh_harmonics_um"] == [0.3, 0.4]
+
+
+def test_a_stage_runs_through_the_one_api():
+    """``ltca.rexs.read(path).stage(id)`` is a Case: ``with_values`` edits it and ``ltca.run`` takes it."""
+    import ltca
+    case = rexs.read(FVA2).stage(19)
+    assert case.kind == "cylindrical" and case.record == rexs.read(FVA2).stage_record(19)
+    assert case.with_values({"analysis.fidelity": "coarse"}).record.fidelity == "coarse"

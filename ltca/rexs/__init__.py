@@ -54,8 +54,14 @@ class RexsImport:
         """The attributes of the stage's components its case cannot represent."""
         return tuple(stage_case_dict(self.model, int(stage_id), self.info(stage_id), 1.0)[1])
 
-    def stage(self, stage_id: int, torque_nm: float | list[float] | None = None) -> CylindricalCase:
-        """The stage as a validated cylindrical case (every check of a TOML case applies)."""
+    def stage(self, stage_id: int, torque_nm: float | list[float] | None = None):
+        """The stage as a validated :class:`ltca.cases.Case` (every check of a TOML case applies):
+        ``ltca.run(ltca.rexs.read(path).stage(3))``."""
+        from ..cases import case_from_data
+        return case_from_data(self.stage_dict(stage_id, torque_nm), file=self.path)
+
+    def stage_record(self, stage_id: int, torque_nm: float | list[float] | None = None) -> CylindricalCase:
+        """The stage's typed cylindrical record (internal units), as :meth:`stage` validates it."""
         return parse_case(self.stage_dict(stage_id, torque_nm), file=self.path)
 
 
