@@ -398,8 +398,6 @@ def _resolve_files(a: argparse.Namespace) -> None:
 def _check_options(a: argparse.Namespace) -> None:
     """Command-line options validated like case fields: CaseError (one line: option, value, allowed; exit 2)
     before any work."""
-    import json
-    from pathlib import Path
 
     from .validation import Int, Num
     if getattr(a, "workers", None) is not None:
@@ -420,22 +418,11 @@ def _check_options(a: argparse.Namespace) -> None:
             Num(0, 1e6, "N m", lo_open=True).check(a.torque, "--torque", None)
         if a.band is not None:
             Num(0, 1e4, "um", lo_open=True).check(a.band, "--band", None)
-        for opt, lo, hi in (("refine", 0, 8), ("level", 0, 8), ("threads", 1, 256)):
+        for opt, lo, hi in (("level", 0, 8), ("threads", 1, 256)):
             if getattr(a, opt) is not None:
                 Int(lo, hi).check(getattr(a, opt), f"--{opt}", None)
         for i, x in enumerate(a.positions or ()):
             Num(-360, 360, "deg or cycles").check(x, f"--positions[{i}]", None)
-        if a.merge is not None:
-            try:
-                doc = json.loads(Path(a.merge).read_text(encoding="utf-8"))
-            except OSError as exc:
-                raise CaseError("--merge", a.merge, f"an existing frozen reference JSON file ({exc.strerror})") \
-                    from None
-            except ValueError as exc:        # not JSON, or not UTF-8
-                raise CaseError("--merge", a.merge, f"a frozen reference JSON file (it is not JSON: {exc})") \
-                    from None
-            if not isinstance(doc, dict):
-                raise CaseError("--merge", a.merge, "a frozen reference JSON file (an object with the positions)")
     if getattr(a, "cache", None) is not None:
         if not a.cache.strip():
             raise CaseError("--cache", a.cache, "a folder for the mesh cache (a non-empty path)")

@@ -309,13 +309,10 @@ def _option_table(tmp: Path) -> list[tuple[str, list[str], str, callable, list[s
         ("optimise", [str(CASES / "fzg_c14_optimise.toml")], "--workers", _int(1, 256), []),
         ("bench", [fzg], "--repeat", _int(1, 1000), []),
         ("validate", ["--reference", "calculix"], "--threads", _int(1, 256), []),
-        ("validate", ["--reference", "calculix"], "--refine", _int(0, 8), []),
         ("validate", ["--reference", "calculix"], "--level", _int(0, 8), []),
         ("validate", ["--reference", "calculix"], "--band", _num(0, 1e4, lo_open=True), []),
         ("validate", ["--reference", "calculix"], "--torque", _num(0, 1e6, lo_open=True), []),
         ("validate", ["--reference", "calculix"], "--positions", _num(-360, 360), []),
-        ("validate", ["--reference", "calculix-whole", "--positions", "0"], "--merge",
-         lambda t: t == str(goodjson), paths),
     ]
 
 

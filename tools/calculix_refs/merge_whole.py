@@ -87,7 +87,12 @@ def run_whole_merge(case_path: str, positions: list[float], out: str, merge: str
     path = Path(merge)
     if not path.is_file():
         raise CaseError("FILE", merge, "a frozen whole-gear reference (JSON) of tools.calculix_refs.freeze_whole")
-    rec = json.loads(path.read_text())
+    try:
+        rec = json.loads(path.read_text(encoding="utf-8"))
+    except ValueError as exc:                     # not JSON, or not UTF-8
+        raise CaseError("FILE", merge, f"a frozen whole-gear reference (it is not JSON: {exc})") from None
+    if not isinstance(rec, dict) or "case" not in rec:
+        raise CaseError("FILE", merge, "a frozen whole-gear reference (an object with the case and positions)")
     if Path(rec["case"]).name != Path(case_path).name:
         raise CaseError("--case", case_path, f"the case of {merge}: {rec['case']}")
     frozen = {ladder_key(p["roll_deg"]): i for i, p in enumerate(rec["positions"])}
