@@ -113,6 +113,7 @@ def test_fidelity_caps_the_contact_cell_across_the_line():
     assert Fidelity.from_preset(FIDELITIES["coarse"], 3.0, ds_max=0.0).cell_size(2.5) == pytest.approx(2.5 / 3)
 
 
+@pytest.mark.slow      # our 32 + 32-tooth model of the reference: about 5 min and 8 GB
 def test_ours_resolves_the_wheel_tip_corner_of_pair_minus_8():
     """Satellite tooth -8 touches at the wheel's tip corner (exact unloaded gap 28.5 um beyond first contact, at
     r1 = 72.36 mm): cells of at most 0.04 module (:meth:`ltca.cylindrical.loaded_model.Fidelity.cell_size`) resolve
@@ -183,6 +184,7 @@ def test_calculix_has_at_least_five_pairs_in_contact():
     assert max(r["ccx"]["loaded_pairs"] for r in _rec()["rows"]) >= 5
 
 
+@pytest.mark.slow      # our 32 + 32-tooth model of the reference: about 5 min and 8 GB
 def test_ours_has_at_least_five_loaded_pairs():
     """At the reference's torque and position our LTCA loads at least 5 pairs (share >= 0.1 % each)."""
     rec = _rec()
@@ -208,6 +210,7 @@ def _cases():
                          id=f"{r['phi_deg']:+.2f}-{q}") for i, r in enumerate(rows) for q in ("te", "share")]
 
 
+@pytest.mark.slow          # our 32 + 32-tooth model of the reference: about 5 min and 8 GB
 @pytest.mark.parametrize("index,quantity", _cases())
 def test_ours_against_frozen_calculix(index, quantity):
     """Loaded TE within 3 % and every pair's load share within 0.03 of the frozen CalculiX values."""
