@@ -18,30 +18,15 @@ from pathlib import Path
 from typing import Any, Callable, Mapping
 
 from .errors import CaseError
+from .validation import CASE_KINDS, kind_of
 
 __all__ = ["Case", "KINDS", "kind_of", "case_from_data", "load_case", "set_key", "get_key"]
 
 #: the case kinds, each recognised by one of its top-level tables
-KINDS: dict[str, frozenset[str]] = {
-    "bevel": frozenset({"bevel"}),
-    "planetary": frozenset({"satellite"}),
-    "study": frozenset({"study"}),
-    "budget": frozenset({"budget", "member"}),
-    "chain": frozenset({"chain", "workpiece"}),
-    "cylindrical": frozenset({"gear_pair", "pinion", "gear"}),
-}
+KINDS = CASE_KINDS
 
 #: the kinds that ``ltca.run`` analyses (gear pairs)
 PAIR_KINDS = ("cylindrical", "bevel", "planetary")
-
-
-def kind_of(data: Mapping, file: str | None = None) -> str:
-    """The kind of a case given as TOML tables (the first kind in :data:`KINDS` whose table it has)."""
-    for kind, tables in KINDS.items():
-        if tables & set(data):
-            return kind
-    raise CaseError("file", "no case tables", "a case of one kind: " + "; ".join(
-        f"{k} ([{'], ['.join(sorted(t))}])" for k, t in KINDS.items()), file)
 
 
 def set_key(data: dict, key: str, value: Any) -> None:

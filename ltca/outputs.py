@@ -40,7 +40,7 @@ __all__ = ["check_out_dir", "RunDir", "atomic_path", "write_json_atomic", "write
 OUTPUTS = ("summary.json", "results.nc", "te.png", "load_sharing.png", "bearing_pattern.png", "root_stress.png",
            "pinion_loaded.vtu", "gear_loaded.vtu", "positions.jsonl", "te_unloaded.png", "te_ptp.png",
            "te_harmonics.png", "report.html", "bearing_pattern_diameter.png", "paraview.pvd", "load_sharing.csv",
-           "torques.csv")
+           "torques.csv", "case.toml")
 #: name patterns of results that a fresh start removes too (the ParaView series' parts)
 OUTPUT_GLOBS = ("paraview_*.vtu", "bearing_pattern_*Nm.vtu", "bearing_pattern_*Nm.png")
 LOCK = ".ltca.lock"

@@ -112,7 +112,6 @@ def open_result(out: str | Path) -> tuple[xr.Dataset, dict]:
     """Read a saved run back: (the dataset of ``results.nc``, loaded into memory; the ``summary.json`` dict)."""
     import json
 
-    from .errors import CaseError
     out = Path(out)
     nc, js = out / "results.nc", out / "summary.json"
     for p in (nc, js):
@@ -124,25 +123,24 @@ def open_result(out: str | Path) -> tuple[xr.Dataset, dict]:
 
 
 def signature(case: Case, **settings) -> dict:
-    """What identifies a run's results: the case (its file's bytes, else its TOML text) and the settings."""
-    from .cases import load_case
-    if case.file and Path(case.file).is_file() and case.data == load_case(case.file).data:
-        digest = hashlib.sha256(Path(case.file).read_bytes()).hexdigest()
-    else:
-        digest = hashlib.sha256(case.to_toml().encode()).hexdigest()
-    return {"case_sha256": digest, **settings}
+    """What identifies a saved result: the case's TOML text and the settings."""
+    return {"case_sha256": hashlib.sha256(case.to_toml().encode()).hexdigest(), **settings}
 
 
-def write_into(result: LoadedResult, out: Path, *, report: bool = True, paraview_steps: int = 10,
-               extra: dict | None = None) -> dict:
+def write_into(result: LoadedResult, out: Path, *, report: bool = True, paraview_steps: int = 10) -> dict:
     """Write a result's files into the run folder ``out`` (already locked): every file through a staging folder,
     ``summary.json`` last. Returns the summary as written."""
-    from .outputs import staging, write_json_atomic
+    from .outputs import staging, write_bytes_atomic, write_json_atomic
+    from .validation import read_case_file
     head = dict(result.summary)
     head["timings_s"] = dict(head.get("timings_s", {}))
-    head.update(extra or {})
+    case_file = result.case.file
+    if case_file is None or read_case_file(case_file) != result.case.data:
+        # a case edited in memory (with_values) or built without a file: the report shows the case as run
+        case_file = str(Path(out) / "case.toml")
+        write_bytes_atomic(case_file, result.case.to_toml().encode())
     with staging(out) as stage:
-        result._writer(result, head, stage, result.case.file or result.case.name, report, paraview_steps)
+        result._writer(result, head, stage, case_file, report, paraview_steps)
     write_json_atomic(Path(out) / "summary.json", head)
     return head
 

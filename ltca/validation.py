@@ -32,7 +32,7 @@ from .errors import CaseError
 
 __all__ = ["Num", "Int", "Str", "Bool", "List", "Table", "ToothMap", "OneOrList", "TableList", "Tagged",
            "check_table", "check_value", "table_reference", "table_keys", "json_schema", "read_case_file",
-           "MAX_FILE_BYTES", "MAX_DEPTH", "words", "DesignError"]
+           "MAX_FILE_BYTES", "MAX_DEPTH", "words", "DesignError", "CASE_KINDS", "KINDS", "kind_of"]
 
 MAX_FILE_BYTES = 4_000_000     # a case file is a few KB; a MB of TOML is a mistake
 MAX_DEPTH = 8                  # tables/arrays nested deeper than any case kind needs
@@ -514,9 +514,28 @@ def read_case_file(path: str | Path) -> dict:
     return data
 
 
-#: case kinds by their characteristic top-level tables, and the command that reads them
-KINDS = {"cylindrical": ({"gear_pair", "pinion", "gear"}, "ltca run / ltca tca"), "bevel": ({"bevel"}, "ltca tca"),
-         "budget": ({"budget", "member"}, "ltca budget"), "chain": ({"chain", "workpiece"}, "ltca chain")}
+#: the case kinds, each recognised by one of its top-level tables (in this order)
+CASE_KINDS: dict[str, frozenset[str]] = {
+    "bevel": frozenset({"bevel"}),
+    "planetary": frozenset({"satellite"}),
+    "study": frozenset({"study"}),
+    "budget": frozenset({"budget", "member"}),
+    "chain": frozenset({"chain", "workpiece"}),
+    "cylindrical": frozenset({"gear_pair", "pinion", "gear"}),
+}
+
+#: the kinds a reader names when it is given a case of another kind, with the command that reads that kind
+KINDS = {kind: (CASE_KINDS[kind], command) for kind, command in (
+    ("cylindrical", "ltca run / ltca tca"), ("bevel", "ltca tca"), ("budget", "ltca budget"), ("chain", "ltca chain"))}
+
+
+def kind_of(data, file: str | None = None) -> str:
+    """The kind of a case given as TOML tables (the first kind in :data:`CASE_KINDS` whose table it has)."""
+    for kind, tables in CASE_KINDS.items():
+        if tables & set(data):
+            return kind
+    raise CaseError("file", "no case tables", "a case of one kind: " + "; ".join(
+        f"{k} ([{'], ['.join(sorted(t))}])" for k, t in CASE_KINDS.items()), file)
 
 
 def check_kind(data: dict, expected: str, file: str | None = None) -> None:

@@ -30,7 +30,7 @@ import numpy as np
 from ..flank import Flank, surface_curvatures
 from .blank import BevelBlank
 from .machine import FlankCut, MemberCut, cutter_to_cradle, gear_settings, roll
-from .surface_state import SurfaceState, _cross, _ez_cross, _rotz, _vectors
+from .surface_state import SurfaceState, _cross, _ez_cross, _rotz, _vectors, work_state
 
 __all__ = ["MeshingError", "SurfaceState", "surface_state", "solve_axial_points", "generate_flank",
            "generate_member", "normal_thickness", "standard_gear_cut", "axial_grid"]
@@ -55,15 +55,7 @@ def surface_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarra
     phi, dphi = roll(ms, np.asarray(psi, dtype=float))
     v = _ez_cross(r_m) - dphi[..., None] * _cross(k, d)
     f = np.einsum("...i,...i", n_m, v)
-    Z = d @ k
-    rho = np.sqrt(np.maximum(np.einsum("...i,...i", d, d) - Z ** 2, 0.0))
-    if with_work:
-        B = ms.work_basis
-        r_w = _rotz(d @ B, -phi)
-        n_w = _rotz(n_m @ B, -phi)
-    else:
-        r_w = n_w = None
-    return SurfaceState(r_w, n_w, f, Z, rho, r_m, n_m, phi)
+    return work_state(ms, d, r_m, n_m, f, phi, with_work)
 
 
 def _residual(fc, x, Zt, Rt):

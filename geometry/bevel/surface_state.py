@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SurfaceState"]
+__all__ = ["SurfaceState", "work_state"]
 
 
 @dataclass(frozen=True)
@@ -54,3 +54,20 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def _ez_cross(b: np.ndarray) -> np.ndarray:
     """e_z x b of (..., 3) vectors, as :func:`_cross` (e_z = (0, 0, 1))."""
     return _cross(np.array([0.0, 0.0, 1.0]), b)
+
+
+def work_state(ms, d: np.ndarray, r_m: np.ndarray, n_m: np.ndarray, f: np.ndarray, phi: np.ndarray,
+               with_work: bool) -> SurfaceState:
+    """The state of generated points given their machine-frame position ``r_m``, normal ``n_m``, offset ``d`` from
+    the work origin (..., 3), the meshing function ``f`` and the work roll ``phi``: axial position Z and radius rho
+    about the work axis, and with ``with_work`` the point and normal in the work's own frame."""
+    k = ms.work_axis
+    Z = d @ k
+    rho = np.sqrt(np.maximum(np.einsum("...i,...i", d, d) - Z ** 2, 0.0))
+    if with_work:
+        B = ms.work_basis
+        r_w = _rotz(d @ B, -phi)
+        n_w = _rotz(n_m @ B, -phi)
+    else:
+        r_w = n_w = None
+    return SurfaceState(r_w, n_w, f, Z, rho, r_m, n_m, phi)

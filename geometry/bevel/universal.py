@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .surface_state import SurfaceState, _cross, _ez_cross, _rotz, _vectors
+from .surface_state import SurfaceState, _cross, _ez_cross, _rotz, _vectors, work_state
 from .machine import FlankCut, roll, tilt_rotation
 
 __all__ = ["universal_state", "blade_coordinates"]
@@ -60,15 +60,7 @@ def universal_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndar
     else:
         v = _ez_cross(r_m) + _rotz(dS[..., None] * eq + drt, psi_b) - dO - dphi[..., None] * _cross(k, d)
         f = np.einsum("...i,...i", n_m, v)
-    Z = d @ k
-    rho = np.sqrt(np.maximum(np.einsum("...i,...i", d, d) - Z ** 2, 0.0))
-    if with_work:
-        B = ms.work_basis
-        r_w = _rotz(d @ B, -phi)
-        n_w = _rotz(n_m @ B, -phi)
-    else:
-        r_w = n_w = None
-    return SurfaceState(r_w, n_w, f, Z, rho, r_m, n_m, phi)
+    return work_state(ms, d, r_m, n_m, f, phi, with_work)
 
 
 def blade_coordinates(fc: FlankCut, r_w: np.ndarray, psi: np.ndarray) -> np.ndarray:

@@ -17,7 +17,7 @@ from geometry.bevel.tca import Assembly, BevelPair
 
 from ..errors import CaseError
 from ..validation import DesignError
-from .case import BevelCase
+from .case import BevelCase, check_bevel_torques
 from .loaded import BevelPosition, solve_position
 from .loaded_model import BevelBodies, BevelFidelity, loaded_model, prepare_bodies
 
@@ -100,19 +100,7 @@ class BevelRun:
 def plan(case, fidelity: str | None = None, positions: int | None = None, torques_nm=None,
          max_output_gb: float = 2.0, file: str | None = None) -> BevelPlan:
     """Validate a bevel run's settings (no synthesis, no FE work)."""
-    if torques_nm is not None:
-        tq = []
-        for i, t in enumerate(torques_nm):
-            if isinstance(t, bool) or not isinstance(t, (int, float)) or not np.isfinite(t) or t == 0 \
-                    or abs(t) > 1e5:
-                raise CaseError(f"--torque[{i}]", t, "a non-zero pinion torque in [-1e5, 1e5] N m (the sign picks "
-                                "the flank)", file)
-            tq.append(float(t))
-        if len(set(tq)) != len(tq):
-            raise CaseError("--torque", list(torques_nm), "distinct torques", file)
-        tq = tuple(tq)
-    else:
-        tq = case.torques
+    tq = case.torques if torques_nm is None else check_bevel_torques(list(torques_nm), "--torque", file)
     if not tq:
         raise DesignError("no torque to analyse", ("load.torque_nm",), "add [load] torque_nm = [..] (N m, pinion)",
                           file=file)

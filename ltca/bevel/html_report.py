@@ -7,13 +7,13 @@ what in them is assumed, the plots, the warnings, the assembly errors, the input
 """
 from __future__ import annotations
 
-import base64
 import datetime as _dt
 import math
 from pathlib import Path
 
 import numpy as np
 
+from ..html_page import embedded_plots, render_page
 from .iso10300 import Iso10300B1, VirtualGears, iso10300_b1, virtual_gears
 
 __all__ = ["PLOTS", "iso_rows", "report_context", "render_report", "write_bevel_report"]
@@ -83,16 +83,6 @@ def _factor_table(iso: Iso10300B1) -> list[tuple[str, str]]:
             ("profile shift / thickness coefficients x_hm1 / x_sm1", f"{p.x_hm:.4f} / {round(p.x_sm, 9) + 0.0:.4f}")]
 
 
-def _plots(folder: Path) -> list[dict]:
-    out = []
-    for name, caption in PLOTS:
-        f = Path(folder) / name
-        if f.exists():
-            out.append({"name": name.removesuffix(".png"), "caption": caption,
-                        "data": base64.b64encode(f.read_bytes()).decode("ascii")})
-    return out
-
-
 def report_context(case, case_path: str, head: dict, virtual: VirtualGears, figures: list[Iso10300B1],
                    plots_dir: Path) -> dict:
     """Everything the template shows; ``head`` is the run's summary (``torques`` records, ``warnings``,
@@ -118,7 +108,7 @@ def report_context(case, case_path: str, head: dict, virtual: VirtualGears, figu
             "written": _dt.datetime.now().isoformat(timespec="seconds"), "command": f"ltca run {case_path}",
             "records": records, "iso": head.get("iso10300", []), "virtual": _virtual_table(virtual),
             "factors": _factor_table(figures[0]),
-            "plots": _plots(plots_dir), "warnings": head.get("warnings", []), "assembly": asm,
+            "plots": embedded_plots(plots_dir, PLOTS), "warnings": head.get("warnings", []), "assembly": asm,
             "max_residual": max(float(r.get("max_torque_residual", 0.0)) for r in records),
             "converged": all(r.get("converged", False) for r in records), "inputs": inputs,
             "case_path": str(case_path), "case_text": text,
@@ -127,11 +117,7 @@ def report_context(case, case_path: str, head: dict, virtual: VirtualGears, figu
 
 def render_report(context: dict) -> str:
     """The page's HTML from :func:`report_context`'s dictionary (Jinja2, autoescaped)."""
-    import jinja2
-    env = jinja2.Environment(loader=jinja2.PackageLoader("ltca.bevel", "templates"),
-                             autoescape=jinja2.select_autoescape(["html", "j2"]), undefined=jinja2.StrictUndefined,
-                             trim_blocks=True, lstrip_blocks=True)
-    return env.get_template("report.html.j2").render(**context)
+    return render_page("ltca.bevel", context)
 
 
 def write_bevel_report(stage: Path, case, pair, head: dict, case_path: str) -> list[dict]:

@@ -7,11 +7,12 @@ positions), the derived geometry (:func:`ltca.cylindrical.derived.derived_geomet
 """
 from __future__ import annotations
 
-import base64
 import datetime as _dt
 from pathlib import Path
 
 import numpy as np
+
+from ..html_page import embedded_plots, render_page
 
 __all__ = ["PLOTS", "report_context", "render_report", "write_run_report"]
 
@@ -53,16 +54,6 @@ def _inputs(case) -> list[tuple[str, str]]:
     ]
 
 
-def _plots(folder: Path) -> list[dict]:
-    out = []
-    for name, caption in PLOTS:
-        f = Path(folder) / name
-        if f.exists():
-            out.append({"name": name.removesuffix(".png"), "caption": caption,
-                        "data": base64.b64encode(f.read_bytes()).decode("ascii")})
-    return out
-
-
 def report_context(case, case_path: str, head: dict, geometry: dict, comparisons: list[dict], striping: dict,
                    plots_dir: Path, timings: dict, n_pos: int, fidelity: str, unconverged: list[str],
                    paraview: str | None = None, command: str | None = None) -> dict:
@@ -85,7 +76,8 @@ def report_context(case, case_path: str, head: dict, geometry: dict, comparisons
         "torques": [f"{t * 1e-3:g}" for t in case.torques], "positions": n_pos, "cycles": case.cycles,
         "fidelity": fidelity, "written": _dt.datetime.now().isoformat(timespec="seconds"),
         "command": command or f"ltca run {case_path}", "records": records, "comparisons": comparisons,
-        "striping": sorted(striping.items()), "striping_limit": STRIPING_LIMIT, "plots": _plots(plots_dir),
+        "striping": sorted(striping.items()), "striping_limit": STRIPING_LIMIT,
+        "plots": embedded_plots(plots_dir, PLOTS),
         "warnings": head.get("warnings", []), "edges": edges, "unconverged": unconverged,
         "max_residual": max(float(r.get("max_torque_residual", 0.0)) for r in records),
         "geometry": geometry, "inputs": _inputs(case), "case_path": str(case_path), "case_text": text,
@@ -95,11 +87,7 @@ def report_context(case, case_path: str, head: dict, geometry: dict, comparisons
 
 def render_report(context: dict) -> str:
     """The page's HTML from :func:`report_context`'s dictionary (Jinja2, autoescaped)."""
-    import jinja2
-    env = jinja2.Environment(loader=jinja2.PackageLoader("ltca.cylindrical", "templates"),
-                             autoescape=jinja2.select_autoescape(["html", "j2"]), undefined=jinja2.StrictUndefined,
-                             trim_blocks=True, lstrip_blocks=True)
-    return env.get_template("report.html.j2").render(**context)
+    return render_page("ltca.cylindrical", context)
 
 
 def write_run_report(stage: Path, lm, case_path: str, head: dict, ds, n_pos: int, fidelity: str,

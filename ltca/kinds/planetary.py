@@ -17,7 +17,12 @@ from ..planetary import run as prun
 from ..results import LoadedResult
 from . import Analysis, figures_from
 
-__all__ = ["ANALYSIS", "planetary_dataset"]
+__all__ = ["ANALYSIS", "planetary_dataset", "CONVENTIONS"]
+
+#: the sign and meaning of the planetary dataset's figures (its ``conventions`` attribute)
+CONVENTIONS = ("TE: the satellite's rotation beyond its rigid-body position under its torque (the wheel held), "
+               "positive, arcsec of the satellite and um along the line of action; torque: the satellite's; root "
+               "stress pinion: the satellite, gear: the wheel")
 
 
 def _plan(case: Case, fidelity, positions, torques_nm, max_output_gb):
@@ -51,7 +56,7 @@ def planetary_dataset(run: prun.PlanetaryRun) -> xr.Dataset:
                 "cycle": ("position", run.phis * run.sm.mesh.z1 / (2 * np.pi),
                           {"units": "1", "long_name": "position in mesh cycles"}),
                 "pair": ("pair", np.array(pairs), {"units": "1", "long_name": "tooth pair"})},
-        attrs={"case": run.plan.case.name, "conventions": __doc__.split("\n\n")[1].replace("\n", " ")})
+        attrs={"case": run.plan.case.name, "conventions": CONVENTIONS})
     return ds
 
 

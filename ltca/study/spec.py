@@ -35,7 +35,8 @@ rerun finds what is done.
 A bad study file raises :class:`ltca.errors.CaseError` naming the field (exit status 2).
 
 The file is declared as :mod:`ltca.validation` tables (:data:`CASE`); the dotted keys it varies are checked against
-the case keys after the table check. Imports ltca.case, ltca.bevel.case, ltca.errors, ltca.validation and ltca.study.montecarlo.
+the case keys after the table check. Imports ltca.case, ltca.bevel.case, ltca.errors, ltca.validation and
+ltca.study.montecarlo.
 """
 from __future__ import annotations
 
@@ -50,7 +51,7 @@ import numpy as np
 
 from ..case import case_keys, parse_case, read_toml, to_toml
 from ..errors import CaseError
-from ..validation import Int, List, Num, OneOrList, Str, Table, TableList, check_table
+from ..validation import Int, List, Num, OneOrList, Str, Table, TableList, check_table, kind_of
 from .montecarlo import MEMBERS, check_members, draw_keys, draw_sample
 
 __all__ = ["Study", "Variant", "MonteCarlo", "set_key", "to_toml", "CASE", "study_keys", "validate_case"]
@@ -141,18 +142,6 @@ def study_keys(kind: str) -> dict[str, str]:
                 out[f"{prefix}{name}"] = getattr(f, "note", "") or ""
     walk(_CASE, "")
     return {k: v for k, v in out.items() if not k.startswith("case.")}
-
-
-def _kind(data: dict) -> str:
-    """The gear kind of a case given as TOML tables, by its tables (as :data:`ltca.cases.KINDS` tells them)."""
-    if "bevel" in data:
-        return "bevel"
-    other = {"satellite": "planetary", "study": "study", "budget": "budget", "member": "budget", "chain": "chain",
-             "workpiece": "chain"}
-    for table, kind in other.items():
-        if table in data:
-            return kind
-    return "cylindrical"
 
 
 def validate_case(kind: str, data: dict, file: str | None = None):
@@ -251,7 +240,7 @@ class Study:
         if not found:
             raise CaseError("study.case", st["case"], f"an existing case file (looked for {case_path})", file)
         base = read_toml(case_path)
-        kind = _kind(base)
+        kind = kind_of(base, str(case_path))
         if kind not in STUDY_KINDS:
             raise CaseError("study.case", st["case"], f"a gear pair case of kind {' or '.join(STUDY_KINDS)} "
                             f"(this is a {kind} case)", file)
