@@ -2,7 +2,12 @@
 
 Profile modifications are functions of the roll length L = sqrt(r^2 - r_b^2) (distance along the
 line of action in the transverse plane, ISO 21771 sec. 4.3), lead modifications of the axial
-position z. Positive values remove material (open the gap).
+position z (0 at mid-face; the datum face I at z = -b/2, the non-datum face II at z = +b/2).
+Positive values remove material (open the gap). The terms (ISO 21771:2007 sec. 4.6, flank modifications):
+tip and root relief (C_a, C_f), profile and lead crowning (C_alpha, C_beta), end relief at each face
+(C_I, C_II over the lengths L_I, L_II) and triangular tip relief (C_Ea at a corner of tip and face end,
+zero on the line from the tip edge at L_Ea from that face to the face end at d_Ea), plus the deviations
+of ISO 1328-1 (slopes and parabolic forms) and tooth position errors.
 """
 from __future__ import annotations
 
@@ -31,6 +36,15 @@ class FlankModification:
         Its range about the least-squares mean line is |f| (the ISO 1328-1 form deviation of a parabola);
         higher-order waviness is not modelled.
     lead_form : f_fbeta, the same over the face width (zero at mid-face, f at both ends).
+    root_relief : C_f, depth at ``root_relief_end_radius`` (the start of the active profile); starts at
+        ``root_relief_start_radius`` and grows as ((L - L_start) / (L_end - L_start)) ** ``root_relief_exponent``.
+    end_relief : ((C_I, L_I), (C_II, L_II)): depth at the datum face (z = -b/2) and the non-datum face (z = +b/2)
+        and the axial length over which it falls to zero, as (1 - d / L) ** ``end_relief_exponent`` with d the
+        distance from that face.
+    triangular_tip_relief : C_Ea, depth at the corner of the tip edge and the face end(s) of
+        ``triangular_tip_relief_faces`` (-1 datum, +1 non-datum, 0 both). Zero on the line from the tip edge at
+        ``triangular_tip_relief_length`` (L_Ea) from the face to the face end at ``triangular_tip_relief_start_radius``
+        (d_Ea / 2); linear in the distance beyond that line, C_Ea at the corner.
     """
     tip_relief: float = 0.0
     tip_relief_start_radius: float | None = None
@@ -42,6 +56,21 @@ class FlankModification:
     profile_slope: float = 0.0
     profile_form: float = 0.0
     lead_form: float = 0.0
+    root_relief: float = 0.0
+    root_relief_start_radius: float | None = None
+    root_relief_end_radius: float | None = None
+    root_relief_exponent: float = 1.0
+    end_relief: tuple[tuple[float, float], tuple[float, float]] = ((0.0, 0.0), (0.0, 0.0))
+    end_relief_exponent: float = 1.0
+    triangular_tip_relief: float = 0.0
+    triangular_tip_relief_start_radius: float | None = None
+    triangular_tip_relief_length: float = 0.0
+    triangular_tip_relief_faces: int = 0
+
+
+def _roll(r: float, r_base: float) -> float:
+    """Roll length of radius ``r`` on the base circle ``r_base`` (0 inside it), mm."""
+    return float(np.sqrt(max(r * r - r_base * r_base, 0.0)))
 
 
 def modification_depth(mod: FlankModification, r: np.ndarray, z: np.ndarray, tooth: np.ndarray,
@@ -94,6 +123,24 @@ def modification_depth(mod: FlankModification, r: np.ndarray, z: np.ndarray, too
         out = out + mod.profile_form * ((L - mid) / half) ** 2
     if mod.lead_form != 0:
         out = out + mod.lead_form * (2.0 * z / face_width) ** 2
+    if mod.root_relief > 0:
+        Ls = _roll(mod.root_relief_start_radius if mod.root_relief_start_radius else r_form + 0.4 * (r_tip - r_form),
+                   r_base)
+        Le = _roll(mod.root_relief_end_radius if mod.root_relief_end_radius else r_form, r_base)
+        xi = np.clip((L - Ls) / (Le - Ls if abs(Le - Ls) > 1e-12 else -1e-12), 0.0, None)
+        out = out + mod.root_relief * xi ** mod.root_relief_exponent
+    half = 0.5 * face_width
+    for (depth, length), d in zip(mod.end_relief, (z + half, half - z)):
+        if depth > 0 and length > 0:
+            out = out + depth * np.clip(1.0 - d / length, 0.0, None) ** mod.end_relief_exponent
+    if mod.triangular_tip_relief > 0 and mod.triangular_tip_relief_length > 0:
+        rs = mod.triangular_tip_relief_start_radius or r_tip - 0.4 * (r_tip - r_form)
+        Ls = _roll(rs, r_base)
+        u = (L - L_tip) / (L_tip - Ls if abs(L_tip - Ls) > 1e-12 else 1e-12)     # 0 at the tip, -1 at d_Ea
+        faces = (z + half, half - z) if mod.triangular_tip_relief_faces == 0 else \
+            (z + half,) if mod.triangular_tip_relief_faces < 0 else (half - z,)
+        for d in faces:
+            out = out + mod.triangular_tip_relief * np.clip(1.0 + u - d / mod.triangular_tip_relief_length, 0.0, None)
     if mod.pitch_errors:
         tooth = np.asarray(tooth)
         if teeth:

@@ -51,6 +51,18 @@ class Modifications:
     lead_form: float = 0.0             # f_fbeta, mm, signed parabolic form deviation over the face
     tip_edge_radius: float = 0.0       # mm, rounding of the tip edges (tangent to flank and tip circle); 0: sharp
     tip_chamfer: float = 0.0           # mm, leg of a chamfer of the tip edges (along flank and tip circle); 0: none
+    root_relief: float = 0.0           # C_f at the start of the active profile, mm
+    root_relief_start_diameter: float | None = None  # mm; None: the diameter of the single-pair zone start
+    root_relief_exponent: float = 1.0  # 1 linear, 2 parabolic
+    end_relief_datum: float = 0.0      # C_I at the datum face (z = -b/2), mm
+    end_relief_datum_length: float = 0.0      # L_I, mm
+    end_relief_non_datum: float = 0.0  # C_II at the non-datum face (z = +b/2), mm
+    end_relief_non_datum_length: float = 0.0  # L_II, mm
+    end_relief_exponent: float = 1.0   # 1 linear, 2 parabolic
+    triangular_tip_relief: float = 0.0  # C_Ea at the corner of tip and face end, mm
+    triangular_tip_relief_start_diameter: float | None = None  # d_Ea at the face end, mm; None: as the tip relief's
+    triangular_tip_relief_length: float = 0.0  # L_Ea along the tip edge from the face end, mm
+    triangular_tip_relief_face: str = "both"   # 'datum', 'non_datum' or 'both'
 
 
 @dataclass(frozen=True)
@@ -151,7 +163,8 @@ _SCHEMA: dict[str, dict] = {
         "tip_relief_um": Num(0, 500, "um", default=0.0,
                              meaning="tip relief C_a, material removed normal to the flank at the tip"),
         "tip_relief_start_diameter_mm": Num(1, 1e5, "mm", meaning="diameter where the tip relief starts (default: "
-                                            "the end of the single-pair zone)"),
+                                            "the end of the single-pair zone when 1 < eps_alpha < 2, else 40 % of "
+                                            "the active profile height below the tip)"),
         "tip_relief_exponent": Num(1, 3, default=1.0, meaning="shape of the tip relief: 1 linear, 2 parabolic"),
         "profile_crowning_um": Num(0, 200, "um", default=0.0,
                                    meaning="profile crowning C_alpha, parabola over the active profile"),
@@ -173,6 +186,31 @@ _SCHEMA: dict[str, dict] = {
                                   meaning="rounding of the tip edges, tangent to the flank and the tip circle"),
         "tip_chamfer_mm": Num(0, 50, "mm", default=0.0, note="0: none",
                               meaning="leg of a chamfer of the tip edges, along the flank and the tip circle"),
+        "root_relief_um": Num(0, 500, "um", default=0.0, meaning="root relief C_f, material removed normal to the "
+                              "flank at the start of the active profile (where the mate's tip meets it)"),
+        "root_relief_start_diameter_mm": Num(1, 1e5, "mm", meaning="diameter where the root relief starts (default: "
+                                             "the start of the single-pair zone)"),
+        "root_relief_exponent": Num(1, 3, default=1.0, meaning="shape of the root relief: 1 linear, 2 parabolic"),
+        "end_relief_datum_um": Num(0, 500, "um", default=0.0, note="given with end_relief_datum_length_mm",
+                                   meaning="end relief C_I at the datum face (z = -b/2), normal to the flank"),
+        "end_relief_datum_length_mm": Num(0, 1e4, "mm", default=0.0, meaning="axial length L_I of the end relief at "
+                                          "the datum face, from the face inwards"),
+        "end_relief_non_datum_um": Num(0, 500, "um", default=0.0, note="given with end_relief_non_datum_length_mm",
+                                       meaning="end relief C_II at the non-datum face (z = +b/2)"),
+        "end_relief_non_datum_length_mm": Num(0, 1e4, "mm", default=0.0, meaning="axial length L_II of the end "
+                                              "relief at the non-datum face, from the face inwards"),
+        "end_relief_exponent": Num(1, 3, default=1.0, meaning="shape of the end reliefs: 1 linear, 2 parabolic"),
+        "triangular_tip_relief_um": Num(0, 500, "um", default=0.0, note="given with triangular_tip_relief_length_mm",
+                                        meaning="triangular tip relief C_Ea at the corner of the tip edge and the "
+                                                "face end"),
+        "triangular_tip_relief_start_diameter_mm": Num(1, 1e5, "mm", meaning="diameter d_Ea where the triangular "
+                                                       "tip relief starts on the face end (default: as the tip "
+                                                       "relief's start)"),
+        "triangular_tip_relief_length_mm": Num(0, 1e4, "mm", default=0.0, meaning="length L_Ea along the tip edge "
+                                               "from the face end where the triangular tip relief starts"),
+        "triangular_tip_relief_face": Str(("datum", "non_datum", "both"), default="both",
+                                          meaning="the face end(s) with a triangular tip relief: datum (z = -b/2), "
+                                                  "non_datum (z = +b/2) or both"),
     },
     "assembly": {
         "centre_distance_mm": Num(1, 1e5, "mm", meaning="centre distance a (default: the working centre distance "
@@ -225,6 +263,11 @@ def _modifications(m: dict, name: str, file: str | None) -> Modifications:
     if m["tip_edge_radius_mm"] > 0 and m["tip_chamfer_mm"] > 0:
         raise CaseError(f"{name}.tip_chamfer_mm", m["tip_chamfer_mm"], "0 when tip_edge_radius_mm is given: a tip "
                         "edge is rounded or chamfered, not both", file)
+    for depth, length in (("end_relief_datum_um", "end_relief_datum_length_mm"),
+                          ("end_relief_non_datum_um", "end_relief_non_datum_length_mm"),
+                          ("triangular_tip_relief_um", "triangular_tip_relief_length_mm")):
+        if m[depth] > 0 and m[length] <= 0:
+            raise CaseError(f"{name}.{length}", m[length], f"a length > 0 mm when {depth} is given", file)
     errors = [(tooth, v * 1e-3) for tooth, v in m["pitch_errors_um"].items()]
     return Modifications(
         tip_relief=m["tip_relief_um"] * 1e-3, tip_relief_start_diameter=m["tip_relief_start_diameter_mm"],
@@ -232,7 +275,16 @@ def _modifications(m: dict, name: str, file: str | None) -> Modifications:
         lead_crowning=m["lead_crowning_um"] * 1e-3, lead_slope=m["lead_slope_um"] * 1e-3,
         pitch_errors=tuple(sorted(errors)), profile_slope=m["profile_slope_um"] * 1e-3,
         roll_ratio_error=m["roll_ratio_error"], profile_form=m["profile_form_um"] * 1e-3,
-        lead_form=m["lead_form_um"] * 1e-3, tip_edge_radius=m["tip_edge_radius_mm"], tip_chamfer=m["tip_chamfer_mm"])
+        lead_form=m["lead_form_um"] * 1e-3, tip_edge_radius=m["tip_edge_radius_mm"], tip_chamfer=m["tip_chamfer_mm"],
+        root_relief=m["root_relief_um"] * 1e-3, root_relief_start_diameter=m["root_relief_start_diameter_mm"],
+        root_relief_exponent=m["root_relief_exponent"], end_relief_datum=m["end_relief_datum_um"] * 1e-3,
+        end_relief_datum_length=m["end_relief_datum_length_mm"],
+        end_relief_non_datum=m["end_relief_non_datum_um"] * 1e-3,
+        end_relief_non_datum_length=m["end_relief_non_datum_length_mm"], end_relief_exponent=m["end_relief_exponent"],
+        triangular_tip_relief=m["triangular_tip_relief_um"] * 1e-3,
+        triangular_tip_relief_start_diameter=m["triangular_tip_relief_start_diameter_mm"],
+        triangular_tip_relief_length=m["triangular_tip_relief_length_mm"],
+        triangular_tip_relief_face=m["triangular_tip_relief_face"])
 
 
 def _member(m: dict, name: str, file: str | None) -> Member:

@@ -21,6 +21,8 @@ Imports nothing of ours but :mod:`ltca.errors`.
 """
 from __future__ import annotations
 
+import difflib
+
 import math
 import re
 import tomllib
@@ -306,6 +308,21 @@ def check_value(spec, v: Any, path: str, file: str | None) -> Any:
     return spec.check(v, path, file)
 
 
+#: a table with more keys than this names the closest ones and points to ``ltca keys`` instead of listing them all
+LISTED_KEYS = 12
+
+
+def _unknown_key(key: str, spec: Table, path: str) -> str:
+    """The message for an unknown key: every allowed key of a small table; else the closest and where all are."""
+    names = sorted(spec.fields)
+    if len(names) <= LISTED_KEYS:
+        return f"unknown key; allowed: {', '.join(names)}"
+    close = difflib.get_close_matches(key, names, n=3, cutoff=0.5)
+    hint = f"did you mean {' or '.join(close)}? " if close else ""
+    where = f"in [{path}]" if path else "at the top level"
+    return f"unknown key; {hint}{len(names)} keys are allowed {where} (`ltca keys` lists them)"
+
+
 def check_table(raw: Any, spec: Table, path: str, file: str | None) -> dict:
     """Validate ``raw`` against ``spec``; returns a dict with every field (defaults filled in) and the keys its
     ``extra`` admits (as written, checked by their reader)."""
@@ -314,8 +331,7 @@ def check_table(raw: Any, spec: Table, path: str, file: str | None) -> dict:
         raise CaseError(label, raw, f"wrong type {type(raw).__name__}; a table", file)
     for k in raw:
         if k not in spec.fields and not (spec.extra and spec.extra(k)):
-            allowed = ", ".join(sorted(spec.fields))
-            raise CaseError(f"{path}.{k}" if path else k, raw[k], f"unknown key; allowed: {allowed}", file)
+            raise CaseError(f"{path}.{k}" if path else k, raw[k], _unknown_key(str(k), spec, path), file)
     out = {}
     for k, f in spec.fields.items():
         p = f"{path}.{k}" if path else k

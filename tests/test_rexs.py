@@ -233,27 +233,59 @@ def test_declared_units_are_converted(tmp_path):
 
 
 def test_flank_modifications_are_mapped():
-    """A REXS 2.0 helix crowning and tip relief referenced by both flanks of the pinion become its case keys."""
+    """A REXS 2.0 helix crowning, tip and root relief, end reliefs and a triangular tip relief referenced by both
+    flanks of the pinion become its case keys (shape linear / parabolic: exponent 1 / 2); what the case cannot
+    hold is listed as unmapped."""
     from ltca.rexs.model import Attribute, Component, Ref, Relation
     rx = rexs.read(FVA2)
     m = rx.model
-    crown = Component(900, "helix_crowning", "crowning", {
-        "helix_crowning_amount_datum_face": Attribute("helix_crowning_amount_datum_face", "mm", "0.008"),
-        "helix_crowning_amount_non_datum_face": Attribute("helix_crowning_amount_non_datum_face", "mm", "0.008")})
-    relief = Component(901, "tip_relief", "relief", {
-        "tip_relief_depth": Attribute("tip_relief_depth", "mm", "0.012"),
-        "tip_relief_datum_diameter": Attribute("tip_relief_datum_diameter", "mm", "136.5"),
-        "shape_of_relief": Attribute("shape_of_relief", "none", "linear")})
-    m.components.update({900: crown, 901: relief})
+
+    def component(cid, kind, **attrs):
+        return Component(cid, kind, kind, {k: Attribute(k, "none" if isinstance(v, str) else "mm", str(v))
+                                           for k, v in attrs.items()})
+    comps = [
+        component(900, "helix_crowning", helix_crowning_amount_datum_face=0.008,
+                  helix_crowning_amount_non_datum_face=0.008),
+        component(901, "tip_relief", tip_relief_depth=0.012, tip_relief_datum_diameter=136.5, shape_of_relief="linear"),
+        component(902, "root_relief", root_relief_depth=0.005, root_relief_datum_diameter=121.0,
+                  shape_of_relief="parabolic"),
+        component(903, "end_relief_datum_face", end_relief_depth_datum_face=0.010, end_relief_length_datum_face=6.0,
+                  shape_of_relief="parabolic"),
+        component(904, "end_relief_non_datum_face", end_relief_depth_non_datum_face=0.007,
+                  end_relief_length_non_datum_face=5.0),
+        component(905, "triangular_tip_relief", triangular_tip_relief_depth=0.009,
+                  triangular_tip_relief_datum_diameter=135.0, triangular_tip_relief_datum_length=12.0,
+                  triangular_tip_relief_evaluation_reference=136.0),
+    ]
+    m.components.update({c.id: c for c in comps})
     for flank in (48, 49):
-        for mod in (900, 901):
-            m.relations.append(Relation(None, "reference", (Ref(flank, "origin"), Ref(mod, "referenced"))))
+        for c in comps:
+            m.relations.append(Relation(None, "reference", (Ref(flank, "origin"), Ref(c.id, "referenced"))))
     from ltca.rexs.stages import stage_case_dict
     data, unmapped, _ = stage_case_dict(m, 19)
-    assert data["pinion"]["modifications"] == {"lead_crowning_um": pytest.approx(8.0),
-                                               "tip_relief_um": pytest.approx(12.0),
-                                               "tip_relief_start_diameter_mm": 136.5}
-    assert any(u.component == 901 and u.attribute == "shape_of_relief" for u in unmapped)
+    assert data["pinion"]["modifications"] == {
+        "lead_crowning_um": pytest.approx(8.0), "tip_relief_um": pytest.approx(12.0),
+        "tip_relief_start_diameter_mm": 136.5, "tip_relief_exponent": 1.0,
+        "root_relief_um": pytest.approx(5.0), "root_relief_start_diameter_mm": 121.0, "root_relief_exponent": 2.0,
+        "end_relief_datum_um": pytest.approx(10.0), "end_relief_datum_length_mm": 6.0, "end_relief_exponent": 2.0,
+        "end_relief_non_datum_um": pytest.approx(7.0), "end_relief_non_datum_length_mm": 5.0,
+        "triangular_tip_relief_um": pytest.approx(9.0), "triangular_tip_relief_start_diameter_mm": 135.0,
+        "triangular_tip_relief_length_mm": 12.0}
+    assert {(u.component, u.attribute) for u in unmapped if u.component >= 900} == \
+        {(905, "triangular_tip_relief_evaluation_reference")}
+
+
+def test_a_relief_shape_the_case_cannot_hold_is_named():
+    from ltca.rexs.errors import RexsError
+    from ltca.rexs.model import Attribute, Component, Ref, Relation
+    from ltca.rexs.stages import stage_case_dict
+    m = rexs.read(FVA2).model
+    m.components[906] = Component(906, "tip_relief", "relief", {
+        "tip_relief_depth": Attribute("tip_relief_depth", "mm", "0.012"),
+        "shape_of_relief": Attribute("shape_of_relief", "none", "logarithmic")})
+    m.relations.append(Relation(None, "reference", (Ref(48, "origin"), Ref(906, "referenced"))))
+    with pytest.raises(RexsError, match="shape_of_relief"):
+        stage_case_dict(m, 19)
 
 
 # ------------------------------------------------------------------------------- broken files

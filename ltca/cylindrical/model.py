@@ -21,7 +21,7 @@ from ..case import CylindricalCase, Member
 from ..errors import CaseError
 from ..validation import DesignError
 
-__all__ = ["PairModel", "build_model", "working_centre_distance"]
+__all__ = ["PairModel", "build_model", "working_centre_distance", "relief_zone_radii"]
 
 
 @dataclass(frozen=True)
@@ -73,27 +73,94 @@ def working_centre_distance(case: CylindricalCase) -> float:
     return 0.5 * mt * (z1 + z2) * np.cos(at) / np.cos(aw)
 
 
-def _modification(m, profile: ToothProfile, name: str) -> FlankModification:
-    r_tip = profile.r_tip
-    start = None
-    if m.tip_relief_start_diameter is not None:
-        start = 0.5 * m.tip_relief_start_diameter
-        if start >= r_tip:
-            raise CaseError(f"{name}.modifications.tip_relief_start_diameter_mm", m.tip_relief_start_diameter,
-                            f"smaller than the tip diameter {2 * r_tip:.3f} mm")
-        r_form = max(profile.r_form_left, profile.r_form_right)
-        if not profile.internal and start <= r_form:
-            raise CaseError(f"{name}.modifications.tip_relief_start_diameter_mm", m.tip_relief_start_diameter,
-                            f"a diameter on the active involute, between the form diameter {2 * r_form:.3f} mm and "
-                            f"the tip diameter {2 * r_tip:.3f} mm (not in the root)")
+def relief_zone_radii(p1: ToothProfile, p2: ToothProfile, a: float, alpha_w: float) -> tuple[dict, dict]:
+    """Where the default tip and root reliefs of each member start and end, from the pair's zones of contact.
+
+    Along the line of action the pinion's active roll length runs from where the gear tip meets it to its own tip;
+    the gear's from where the pinion tip meets it to its tip (a ring: roll lengths grow towards its root). With a
+    transverse contact ratio 1 < eps_alpha < 2 the two-pair zone at each end of the path is (eps_alpha - 1) p_bt
+    long (ISO 21771 sec. 5.4; p_bt the transverse base pitch), so a "long" relief starts at the end of the
+    single-pair zone: ``tip_start`` (the tip relief), ``root_start`` (the root relief) and ``root_end`` (the start
+    of the active profile, where C_f is given). Other contact ratios give None (the relief needs an explicit start).
+
+    Returns
+    -------
+    (pinion, gear) : dicts with the radii ``tip_start``, ``root_start``, ``root_end`` in mm (or None).
+    """
+    rho1 = np.sqrt(max(p1.r_tip ** 2 - p1.r_base ** 2, 0.0))
+    rho2 = np.sqrt(max(p2.r_tip ** 2 - p2.r_base ** 2, 0.0))
+    loa = a * np.sin(alpha_w)
+    p_bt = 2 * np.pi * p1.r_base / p1.z
+    if p2.internal:
+        start1, end2, sgn2 = rho2 - loa, rho1 + loa, -1.0       # ring roll length = pinion's + loa
+    else:
+        start1, end2, sgn2 = loa - rho2, loa - rho1, 1.0        # gear roll length = loa - pinion's
+    eps = (rho1 - start1) / p_bt
+    out = []
+    for prof, rho_tip, rho_root, sgn in ((p1, rho1, start1, 1.0), (p2, rho2, end2, sgn2)):
+        if not 1.0 < eps < 2.0 or rho_root <= 0:
+            out.append({"tip_start": None, "root_start": None, "root_end": None})
+            continue
+        zone = (eps - 1.0) * p_bt
+        out.append({"tip_start": float(np.hypot(prof.r_base, rho_tip - sgn * zone)),
+                    "root_start": float(np.hypot(prof.r_base, rho_root + sgn * zone)),
+                    "root_end": float(np.hypot(prof.r_base, rho_root))})
+    return out[0], out[1]
+
+
+def _on_involute(value: float | None, profile: ToothProfile, key: str) -> float | None:
+    """A diameter a relief starts at, as a radius on the active involute (between form and tip), checked."""
+    if value is None:
+        return None
+    r, r_tip = 0.5 * value, profile.r_tip
+    r_form = max(profile.r_form_left, profile.r_form_right)
+    if not profile.internal and r >= r_tip:
+        raise CaseError(key, value, f"smaller than the tip diameter {2 * r_tip:.3f} mm")
+    if not profile.internal and r <= r_form:
+        raise CaseError(key, value, f"a diameter on the active involute, between the form diameter {2 * r_form:.3f} "
+                        f"mm and the tip diameter {2 * r_tip:.3f} mm (not in the root)")
+    if profile.internal and not r_tip < r < max(profile.r_form_left, profile.r_form_right):
+        raise CaseError(key, value, f"a diameter on the ring's active involute, between its tip diameter "
+                        f"{2 * r_tip:.3f} mm and its form diameter {2 * r_form:.3f} mm")
+    return r
+
+
+_FACES = {"datum": -1, "non_datum": 1, "both": 0}
+
+
+def _modification(m, profile: ToothProfile, name: str, zones: dict) -> FlankModification:
+    """The member's flank modifications in the geometry's terms: relief starts as radii (given or from ``zones``,
+    :func:`relief_zone_radii`), the roll-ratio error as a profile slope."""
+    key = f"{name}.modifications."
+    start = _on_involute(m.tip_relief_start_diameter, profile, key + "tip_relief_start_diameter_mm")
+    root_start = _on_involute(m.root_relief_start_diameter, profile, key + "root_relief_start_diameter_mm")
+    tri_start = _on_involute(m.triangular_tip_relief_start_diameter, profile,
+                             key + "triangular_tip_relief_start_diameter_mm")
+    if m.tip_relief > 0 and start is None:
+        start = zones["tip_start"]
+    if m.root_relief > 0 and root_start is None:
+        root_start = zones["root_start"]
+        if root_start is None:
+            raise CaseError(key + "root_relief_start_diameter_mm", None, "given: the pair has no single-pair zone "
+                            "(eps_alpha outside (1, 2)) from which the default start is taken")
+    if m.triangular_tip_relief > 0 and tri_start is None:
+        tri_start = start if start is not None else zones["tip_start"]
     slope = m.profile_slope
     if m.roll_ratio_error:
         rf = profile.r_form_right
-        lo, hi = (r_tip, rf) if profile.internal else (rf, r_tip)
+        lo, hi = (profile.r_tip, rf) if profile.internal else (rf, profile.r_tip)
         slope += profile_slope_from_roll_ratio(m.roll_ratio_error, profile.r_base, lo, hi)
     return FlankModification(m.tip_relief, start, m.tip_relief_exponent, m.profile_crowning, m.lead_crowning,
                              m.lead_slope, m.pitch_errors, slope, profile_form=m.profile_form,
-                             lead_form=m.lead_form)
+                             lead_form=m.lead_form, root_relief=m.root_relief, root_relief_start_radius=root_start,
+                             root_relief_end_radius=zones["root_end"], root_relief_exponent=m.root_relief_exponent,
+                             end_relief=((m.end_relief_datum, m.end_relief_datum_length),
+                                         (m.end_relief_non_datum, m.end_relief_non_datum_length)),
+                             end_relief_exponent=m.end_relief_exponent,
+                             triangular_tip_relief=m.triangular_tip_relief,
+                             triangular_tip_relief_start_radius=tri_start,
+                             triangular_tip_relief_length=m.triangular_tip_relief_length,
+                             triangular_tip_relief_faces=_FACES[m.triangular_tip_relief_face])
 
 
 def _profile(case: CylindricalCase, member: Member, beta: float, name: str) -> ToothProfile:
@@ -213,8 +280,9 @@ def build_model(case: CylindricalCase) -> PairModel:
     shift = int(s1.gear_tooth[0] - s.gear_tooth[0])
     web1 = _web(case.pinion, p1, r_b, "pinion", case.module)
     web2 = _web(case.gear, p2, r_b2, "gear", case.module)
-    return PairModel(case, p1, p2, pair, _modification(case.pinion.modifications, p1, "pinion"),
-                     _modification(case.gear.modifications, p2, "gear"), b, r_b, r_b2,
+    zones1, zones2 = relief_zone_radii(p1, p2, pair.a, float(pair.alpha_w))
+    return PairModel(case, p1, p2, pair, _modification(case.pinion.modifications, p1, "pinion", zones1),
+                     _modification(case.gear.modifications, p2, "gear", zones2), b, r_b, r_b2,
                      int(s.gear_side[0]) or 1, phi_pitch, shift, web1, web2)
 
 

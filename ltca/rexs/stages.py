@@ -28,6 +28,12 @@ modification_coefficient``
 ``helix_slope.helix_slope``                               ``*.modifications.lead_slope_um``
 ``profile_crowning.profile_crowning_at_tip/_root``        ``*.modifications.profile_crowning_um``
 ``tip_relief.tip_relief_depth / _datum_diameter``         ``*.modifications.tip_relief_um / _start_diameter_mm``
+``root_relief.root_relief_depth / _datum_diameter``       ``*.modifications.root_relief_um / _start_diameter_mm``
+``end_relief_(non_)datum_face.end_relief_depth_* /        ``*.modifications.end_relief_(non_)datum_um /
+end_relief_length_*``                                     _length_mm`` (datum face at z = -b/2)
+``triangular_tip_relief.*_depth / _datum_diameter /       ``*.modifications.triangular_tip_relief_um /
+_datum_length``                                           _start_diameter_mm / _length_mm`` (both face ends)
+``*.shape_of_relief`` linear / parabolic                  ``*.modifications.*_exponent`` 1 / 2
 ``cylindrical_stage.center_distance``                     ``assembly.centre_distance_mm``
 ``material.elastic_modulus / poisson_ratio``              ``material.youngs_modulus_mpa / poisson_ratio``
 ``external_load.torque_around_u_axis`` (per load case)    ``load.torque_nm`` (carried to the stage's gear_1)
@@ -219,12 +225,43 @@ def _modification(model, used, mod: Component, mods: dict) -> None:
         if a and all(_same(v, a[0]) for v in a):
             put("profile_crowning_um", a[0] * 1e3)
             used.take(mod, "profile_crowning_at_tip", "profile_crowning_at_root")
-    elif mod.type == "tip_relief" and mod.has("tip_relief_depth"):
-        put("tip_relief_um", mod.number("tip_relief_depth", "length") * 1e3)
-        used.take(mod, "tip_relief_depth")
-        if mod.has("tip_relief_datum_diameter"):
-            put("tip_relief_start_diameter_mm", mod.number("tip_relief_datum_diameter", "length"))
-            used.take(mod, "tip_relief_datum_diameter")
+    elif mod.type in _RELIEFS:
+        prefix, keys = _RELIEFS[mod.type]
+        for attr, key, scale in keys:
+            if mod.has(attr):
+                put(f"{prefix}{key}", mod.number(attr, "length") * scale)
+                used.take(mod, attr)
+        if mod.has("shape_of_relief"):
+            shape = mod.text("shape_of_relief")
+            if shape not in _SHAPES:
+                raise RexsError(mod.label, "shape_of_relief", f"{shape!r}: the case holds linear or parabolic "
+                                "reliefs", shape, model.file)
+            if prefix != "triangular_tip_relief_":
+                put(_EXPONENT[mod.type], _SHAPES[shape])
+            elif _SHAPES[shape] != 1.0:
+                raise RexsError(mod.label, "shape_of_relief", f"{shape!r}: a triangular tip relief is linear in the "
+                                "case", shape, model.file)
+            used.take(mod, "shape_of_relief")
+
+
+#: REXS relief component -> (case key prefix, ((attribute, key, scale to the key's unit), ...))
+_RELIEFS = {
+    "tip_relief": ("tip_relief_", (("tip_relief_depth", "um", 1e3),
+                                   ("tip_relief_datum_diameter", "start_diameter_mm", 1.0))),
+    "root_relief": ("root_relief_", (("root_relief_depth", "um", 1e3),
+                                     ("root_relief_datum_diameter", "start_diameter_mm", 1.0))),
+    "end_relief_datum_face": ("end_relief_datum_", (("end_relief_depth_datum_face", "um", 1e3),
+                                                    ("end_relief_length_datum_face", "length_mm", 1.0))),
+    "end_relief_non_datum_face": ("end_relief_non_datum_", (("end_relief_depth_non_datum_face", "um", 1e3),
+                                                            ("end_relief_length_non_datum_face", "length_mm", 1.0))),
+    "triangular_tip_relief": ("triangular_tip_relief_", (("triangular_tip_relief_depth", "um", 1e3),
+                                                         ("triangular_tip_relief_datum_diameter", "start_diameter_mm",
+                                                          1.0),
+                                                         ("triangular_tip_relief_datum_length", "length_mm", 1.0))),
+}
+_EXPONENT = {"tip_relief": "tip_relief_exponent", "root_relief": "root_relief_exponent",
+             "end_relief_datum_face": "end_relief_exponent", "end_relief_non_datum_face": "end_relief_exponent"}
+_SHAPES = {"linear": 1.0, "parabolic": 2.0}
 
 
 def _tool(tool: Component, module: float) -> dict:
