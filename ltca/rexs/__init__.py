@@ -1,11 +1,12 @@
-"""REXS, the gear industry's exchange format (FVA): gear stages in as cylindrical cases, results out as REXS
-result components.
+"""REXS, the gear industry's exchange format (FVA): gear stages in as cylindrical or bevel cases, results out as
+REXS result components.
 
     model.py     the in-memory model: components, attributes with units, relations, load cases
     io.py        reading and writing a file in its form: XML (.rexs, xml_form.py), JSON (.rexsj, json_form.py), zip (.rexsz)
     units.py     declared units -> mm, deg, N m, MPa
     train.py     a stage's related components (flanks, tools, material, shaft) and the torques through the train
     stages.py    cylindrical stages (and the sun-planet / planet-ring pairs of a planetary stage) -> case dicts
+    bevel_stage.py  bevel stages -> the blank of a bevel case
     results.py   our results -> REXS result attributes and components
     schema.py    a checker of attribute ids, units and value types against the REXS 2.0.0 schema
     errors.py    RexsError (a CaseError: exit status 2 from the command line)
@@ -29,7 +30,7 @@ __all__ = ["read", "export_results", "RexsImport", "StageInfo", "Unmapped", "Rex
 
 @dataclass(frozen=True)
 class RexsImport:
-    """A REXS file read: the model, its cylindrical stages, and every attribute no stage's case represents.
+    """A REXS file read: the model, its stages, and every attribute no stage's case represents.
 
     ``unmapped`` lists, for the whole model, each attribute of a stage's components the case cannot hold (with the
     reason) and each attribute of every component no stage reads (shafts, bearings, lubricant, ...)."""
@@ -43,7 +44,7 @@ class RexsImport:
         for s in self.stages:
             if s.id == int(stage_id):
                 return s
-        raise RexsError("model", "stage", f"no cylindrical stage {stage_id}; the stages are "
+        raise RexsError("model", "stage", f"no stage {stage_id}; the stages are "
                         f"{[s.id for s in self.stages]}", stage_id, self.path)
 
     def stage_dict(self, stage_id: int, torque_nm: float | list[float] | None = None) -> dict:
@@ -60,9 +61,12 @@ class RexsImport:
         from ..cases import case_from_data
         return case_from_data(self.stage_dict(stage_id, torque_nm), file=self.path)
 
-    def stage_record(self, stage_id: int, torque_nm: float | list[float] | None = None) -> CylindricalCase:
-        """The stage's typed cylindrical record (internal units), as :meth:`stage` validates it."""
-        return parse_case(self.stage_dict(stage_id, torque_nm), file=self.path)
+    def stage_record(self, stage_id: int, torque_nm: float | list[float] | None = None):
+        """The stage's typed record (internal units) as :meth:`stage` validates it: a
+        :class:`ltca.case.CylindricalCase`, or for a bevel stage its bevel record."""
+        if self.info(stage_id).kind == "cylindrical":
+            return parse_case(self.stage_dict(stage_id, torque_nm), file=self.path)
+        return self.stage(stage_id, torque_nm).record
 
 
 def read(path: str | Path) -> RexsImport:
@@ -71,7 +75,11 @@ def read(path: str | Path) -> RexsImport:
     infos = tuple(stage_infos(model))
     unmapped, read_ids, mapped = [], set(), set()
     for s in infos:
-        _, um, ids = stage_case_dict(model, s.id, s, list(s.torques_nm) or 1.0)
+        try:
+            _, um, ids = stage_case_dict(model, s.id, s, list(s.torques_nm) or 1.0)
+        except RexsError as exc:                # that stage is refused when asked for; the others still import
+            unmapped.append(Unmapped(s.id, model.components[s.id].type, "-", None, None, f"not mappable: {exc}"))
+            continue
         unmapped += [u for u in um if u.attribute != "torque"]
         read_ids |= ids
         left = {(u.component, u.attribute) for u in um}

@@ -39,10 +39,8 @@ _datum_length``                                           _start_diameter_mm / _
 ``external_load.torque_around_u_axis`` (per load case)    ``load.torque_nm`` (carried to the stage's gear_1)
 ========================================================  ===========================================
 
-A bevel stage (``bevel_stage`` with ``bevel_gear`` members; none in the reference samples) would map
-``number_of_teeth``, ``mean_normal_module``/``outer_pitch_diameter``, ``mean_spiral_angle`` and
-``spiral_angle_pitch_direction``, ``face_width``, ``pitch_angle``, ``face_angle``, ``root_angle``,
-``outer_cone_distance`` and the shaft angle onto the ``[bevel]`` blank of a bevel case; it is listed as not mapped.
+A bevel stage (``bevel_stage`` with ``bevel_gear`` members) maps onto the ``[bevel]`` blank of a bevel case
+(:mod:`ltca.rexs.bevel_stage`).
 
 Everything a stage's components carry that the case cannot hold is returned as :class:`Unmapped` with a reason.
 """
@@ -52,11 +50,15 @@ import math
 from dataclasses import dataclass
 
 from .errors import RexsError
+from .bevel_stage import BEVEL_STAGE, bevel_case_dict
 from .model import Component, RexsModel
 from .train import (GEAR_TYPES, MOD_TYPES, flanks_of, material_of, modifications_of, shaft_of, stage_gears_of,
                     stage_torques, teeth_of, tools_of)
 
-__all__ = ["Unmapped", "StageInfo", "stage_infos", "stage_case_dict", "GEAR_TYPES"]
+__all__ = ["Unmapped", "StageInfo", "stage_infos", "stage_case_dict", "GEAR_TYPES", "STAGE_TYPES"]
+
+#: the stage components a case is made of
+STAGE_TYPES = ("cylindrical_stage", BEVEL_STAGE)
 
 
 @dataclass(frozen=True)
@@ -72,9 +74,10 @@ class Unmapped:
 
 @dataclass(frozen=True)
 class StageInfo:
-    """A cylindrical stage of the model: its component id, name, members (REXS gear ids: ``pinion`` is gear_1 unless
-    that is the ring), whether the pair is internal, the planetary stage it belongs to, and the pinion torques
-    (N m) of the model's load cases (empty: none found)."""
+    """A stage of the model: its component id, name, members (REXS gear ids: ``pinion`` is gear_1 unless that is
+    the ring, or for a bevel stage the member with more teeth), whether the pair is internal, the planetary stage it
+    belongs to, the pinion torques (N m) of the model's load cases (empty: none found) and the case kind it maps to
+    (``cylindrical`` or ``bevel``)."""
     id: int
     name: str | None
     pinion: int
@@ -82,6 +85,7 @@ class StageInfo:
     internal: bool
     planetary: int | None
     torques_nm: tuple[float, ...]
+    kind: str = "cylindrical"
 
 
 class _Used:
@@ -113,8 +117,9 @@ def _internal(c: Component) -> bool:
 def stage_infos(model: RexsModel) -> list[StageInfo]:
     """Every cylindrical stage of the model (by component id), with its pinion torques per load case."""
     stage_gears = {}
-    for st in model.of_type("cylindrical_stage"):
-        stage_gears[st.id] = stage_gears_of(model, st.id)
+    for kind in STAGE_TYPES:
+        for st in model.of_type(kind):
+            stage_gears[st.id] = stage_gears_of(model, st.id)
     torques = stage_torques(model, stage_gears) if stage_gears else {}
     planet_of = {}
     for ps in model.of_type("planetary_stage"):
@@ -128,11 +133,14 @@ def stage_infos(model: RexsModel) -> list[StageInfo]:
     out = []
     for s, (g1, g2) in stage_gears.items():
         p, g = _pinion_first(model, g1, g2)
+        bevel = model.components[s].type == BEVEL_STAGE
+        if bevel and teeth_of(model.components[g2]) < teeth_of(model.components[g1]):
+            p, g = g2, g1                # a bevel pair's pinion is the member with fewer teeth
         tq = torques.get(s, [])
         if p != g1:      # the torque was carried to gear_1; the case's pinion is gear_2 (gear_1 is the ring)
             tq = [t * teeth_of(model.components[p]) / teeth_of(model.components[g1]) for t in tq]
-        out.append(StageInfo(s, model.components[s].name, p, g, _internal(model.components[g]), planet_of.get(s),
-                             tuple(tq)))
+        out.append(StageInfo(s, model.components[s].name, p, g, not bevel and _internal(model.components[g]),
+                             planet_of.get(s), tuple(tq), "bevel" if bevel else "cylindrical"))
     return out
 
 
@@ -298,10 +306,15 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
 
     ``torque_nm`` replaces the torques of the model's load cases; a stage with neither is a :class:`RexsError`."""
     st = model.component(stage_id)
-    if st.type != "cylindrical_stage":
-        raise RexsError(st.label, "-", "not a cylindrical_stage", stage_id, model.file)
+    if st.type not in STAGE_TYPES:
+        raise RexsError(st.label, "-", f"not a stage of the types {', '.join(STAGE_TYPES)}", stage_id, model.file)
     info = info or next(i for i in stage_infos(model) if i.id == stage_id)
     used, unmapped = _Used(), []
+    if st.type == BEVEL_STAGE:
+        pin, gear = model.components[info.pinion], model.components[info.gear]
+        data = bevel_case_dict(model, stage_id, pin, gear, _torque_list(torque_nm, info), used, unmapped)
+        comps = [st, pin, gear] + [m for m in (material_of(model, g) for g in (pin, gear)) if m is not None]
+        return data, unmapped + _leftovers(model, stage_id, comps, used), {c.id for c in comps}
     pin, gear = model.components[info.pinion], model.components[info.gear]
     for g in (pin, gear):
         for a in ("number_of_teeth", "normal_module", "face_width"):
@@ -375,10 +388,7 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
     else:
         unmapped.append(Unmapped(stage_id, st.type, "material", None, None,
                                  "not given: no material for either gear, the case's default steel is used"))
-    torques = torque_nm if torque_nm is not None else list(info.torques_nm)
-    if isinstance(torques, (int, float)):
-        torques = [float(torques)]
-    torques = list(dict.fromkeys(round(float(t), 12) for t in torques))
+    torques = _torque_list(torque_nm, info)
     if not torques:
         raise RexsError(st.label, "torque", "missing: no external load defines a torque that reaches this stage "
                         "(give one with --torque)", None, model.file)
@@ -388,11 +398,27 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
     comps += [t for g in (pin, gear) for t in tools_of(model, g, flanks_of(model, g.id))]
     comps += [m for f in comps[3:] for m in modifications_of(model, f)]
     comps += [m for m in mats if m is not None]
-    for r in model.relations_of("stage_gear_data", stage_id, "stage"):
-        sgd = r.role("stage_gear_data")
-        if sgd in model.components:
-            comps.append(model.components[sgd])
-    seen = set()
+    unmapped += _leftovers(model, stage_id, comps, used)
+    return data, unmapped, {c.id for c in comps} | _gear_data_ids(model, stage_id)
+
+
+def _torque_list(torque_nm: float | list[float] | None, info: StageInfo) -> list[float]:
+    """The torques (N m) a stage's case gets: the given ones, else its load cases', without repeats."""
+    torques = torque_nm if torque_nm is not None else list(info.torques_nm)
+    if isinstance(torques, (int, float)):
+        torques = [float(torques)]
+    return list(dict.fromkeys(round(float(t), 12) for t in torques))
+
+
+def _gear_data_ids(model: RexsModel, stage_id: int) -> set[int]:
+    return {r.role("stage_gear_data") for r in model.relations_of("stage_gear_data", stage_id, "stage")
+            if r.role("stage_gear_data") in model.components}
+
+
+def _leftovers(model: RexsModel, stage_id: int, comps: list[Component], used: _Used) -> list[Unmapped]:
+    """Every attribute of the stage's components (and its stage gear data) that its mapping did not read."""
+    comps = comps + [model.components[i] for i in sorted(_gear_data_ids(model, stage_id))]
+    out, seen = [], set()
     for c in comps:
         if c.id in seen:
             continue
@@ -401,9 +427,9 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
             if a.id in used.ids.get(c.id, set()):
                 continue
             reason = used.reasons.get((c.id, a.id), _why(c, a.id))
-            unmapped.append(Unmapped(c.id, c.type, a.id, a.value if not hasattr(a.value, "tag") else "<coded>",
-                                     a.unit, reason))
-    return data, unmapped, seen
+            out.append(Unmapped(c.id, c.type, a.id, a.value if not hasattr(a.value, "tag") else "<coded>",
+                                a.unit, reason))
+    return out
 
 
 def _why(c: Component, attr: str) -> str:

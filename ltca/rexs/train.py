@@ -39,9 +39,10 @@ def stage_gears_of(model: RexsModel, sid: int):
         if g not in model.components:
             raise RexsError(st.label, role, f"missing gear: the stage relation {r.id} names component {g}, which "
                             "the model does not contain", g, model.file)
-        if model.components[g].type not in GEAR_TYPES:
-            raise RexsError(st.label, role, f"component {g} is a {model.components[g].type}, a cylindrical_gear "
-                            "or ring_gear expected", g, model.file)
+        allowed = ("bevel_gear",) if st.type == "bevel_stage" else GEAR_TYPES
+        if model.components[g].type not in allowed:
+            raise RexsError(st.label, role, f"component {g} is a {model.components[g].type}, a "
+                            f"{' or '.join(allowed)} expected", g, model.file)
     return g1, g2
 
 
