@@ -19,7 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..case import CylindricalCase, parse_case
+from ..case import parse_case
 from .errors import RexsError
 from .io import read_model, write_model
 from .model import RexsModel
