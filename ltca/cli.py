@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import os
 import sys
+from pathlib import Path
 
 from .errors import CaseError, ConvergenceError
 from .shipped import case_path
@@ -395,6 +397,17 @@ def _resolve_files(a: argparse.Namespace) -> None:
             a.study = str(study_path(a.study))
 
 
+def _check_out_file(path: Path) -> None:
+    """A file an option names for writing: not a folder, in a folder that exists and can be written."""
+    if path.is_dir():
+        raise CaseError("--out", str(path), "a file to write, not a folder")
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise CaseError("--out", str(path), f"a file in an existing folder ({folder} does not exist)")
+    if not os.access(folder, os.W_OK):
+        raise CaseError("--out", str(path), f"a file in a writable folder ({folder} is not writable)")
+
+
 def _check_options(a: argparse.Namespace) -> None:
     """Command-line options validated like case fields: CaseError (one line: option, value, allowed; exit 2)
     before any work."""
@@ -423,6 +436,14 @@ def _check_options(a: argparse.Namespace) -> None:
                 Int(lo, hi).check(getattr(a, opt), f"--{opt}", None)
         for i, x in enumerate(a.positions or ()):
             Num(-360, 360, "deg or cycles").check(x, f"--positions[{i}]", None)
+    out = getattr(a, "out", None)
+    if out is not None and not str(out).strip():
+        raise CaseError("--out", out, "a non-empty path")
+    if out is not None and a.command == "import":
+        _check_out_file(Path(out))
+    elif out is not None:                   # every command that writes a folder: refused before any work
+        from .outputs import check_out_dir
+        check_out_dir(out)
     if getattr(a, "cache", None) is not None:
         if not a.cache.strip():
             raise CaseError("--cache", a.cache, "a folder for the mesh cache (a non-empty path)")
