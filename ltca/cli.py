@@ -224,8 +224,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--cache", default=None, help="directory for the mesh cache (default: none, cold run)")
     r.add_argument("--paraview-steps", type=_nonnegative_int, default=None, metavar="N",
                    help="positions of the first torque in the ParaView series paraview.pvd (displacement, stress, "
-                        "flank pressure), spread over the cycle with the pitch position; 0: none, more than the "
-                        "positions: all (default 10; FZG C14: about 0.15 s and 1.3 MB per position)")
+                        "flank pressure; every gear kind), spread over the cycle with the pitch (bevel: mean) "
+                        "position; 0: none, more than the positions: all (default 10; FZG C14: about 0.15 s and "
+                        "1.3 MB per position)")
     r.add_argument("--quiet", action="store_true", help="no progress output")
     r.set_defaults(func=_cmd_run)
 

@@ -141,7 +141,7 @@ def tca(case: Case | str | Path, *, positions: int | None = None) -> TcaResult:
         from .bevel.run import bevel_tca_summary
         return TcaResult(case, bevel_tca_summary(case.record, case.file)[0])
     if case.kind == "planetary":
-        from .planetary.run import planetary_tca_summary
+        from .planetary.analysis import planetary_tca_summary
         return TcaResult(case, planetary_tca_summary(case.record, positions)[0])
     _analysis(case.kind)          # names the command of a case that is not a gear pair
     raise AssertionError(case.kind)

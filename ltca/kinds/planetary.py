@@ -14,7 +14,7 @@ import xarray as xr
 
 from ..cases import Case
 from ..cylindrical.tca import ARCSEC_PER_RAD
-from ..planetary import run as prun
+from ..planetary import analysis as prun
 from ..results import LoadedResult
 from . import Analysis, figures_from
 
