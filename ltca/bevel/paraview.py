@@ -4,9 +4,9 @@
 Each step has three parts, in the mesh frame S_h of the pair (:func:`ltca.geometry.bevel.tca.mesh_frames`, the
 assembly errors included) at that pinion angle, the gear at its kinematic angle:
 
-- ``pinion`` and ``gear``: the whole FE bodies (:class:`ltca.paraview.BodyPart`: displacement, von Mises and
-  principal stresses of the FE solution under the position's contact forces, gathered on each body's compliance
-  grid);
+- ``pinion`` and ``gear``: the FE bodies cut to their loaded teeth and the blank under them
+  (:class:`ltca.paraview.BodyPart`: displacement, von Mises and principal stresses of the FE solution under the
+  position's contact forces, gathered on each body's compliance grid);
 - ``flank``: the loaded flank of every pinion tooth that can carry load, as a quad surface on a lattice of depth
   fraction x cone distance (the body's own flank coordinates; bins about the size of a contact cell) with the cell
   field ``contact_pressure_mpa``: the largest contact-cell pressure in each bin, so its peak is the solver's peak
@@ -29,7 +29,7 @@ from .loaded import BevelPosition, _weights_of
 from .loaded_model import body_t, member_flanks
 from .model import BevelLoadedModel
 
-__all__ = ["write_series"]
+__all__ = ["loaded_teeth_tets", "write_series"]
 
 #: largest number of lattice bins along either flank direction
 MAX_BINS = 400
@@ -38,6 +38,30 @@ MAX_BINS = 400
 def _rotz(angle: float) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def loaded_teeth_tets(body, z: int) -> np.ndarray:
+    """Tets of a bevel body within half a pitch (about its axis) of a loaded tooth's centre line: halfway between the
+    tooth's concave and convex flank facets at the same distance from the apex (a spiral tooth turns along its face
+    width)."""
+    nodes, tets, facets = body.mesh.nodes, body.mesh.tets, body.mesh.facets
+    c = nodes[tets[:, :4]].mean(axis=1)
+    theta, rc = np.arctan2(c[:, 1], c[:, 0]), np.linalg.norm(c, axis=1)
+    keep = np.zeros(len(tets), bool)
+    for k in body.spec.loaded:
+        sides = [facets.get(f"flank_{k}_{s}") for s in ("concave", "convex")]
+        if any(f is None for f in sides):
+            return np.arange(len(tets))
+        pts = nodes[np.concatenate([np.unique(f) for f in sides])]
+        a = np.arctan2(pts[:, 1], pts[:, 0])
+        a0 = np.angle(np.exp(1j * a).mean())
+        rel, r = np.angle(np.exp(1j * (a - a0))), np.linalg.norm(pts, axis=1)
+        edges = np.linspace(r.min(), r.max(), 13)
+        at = np.clip(np.digitize(r, edges) - 1, 0, 11)
+        full = [b for b in range(12) if np.any(at == b)]
+        centre = np.interp(rc, [r[at == b].mean() for b in full], [rel[at == b].mean() for b in full])
+        keep |= np.abs(np.angle(np.exp(1j * (theta - a0 - centre)))) <= np.pi / z
+    return np.flatnonzero(keep)
 
 
 def _frame(B: np.ndarray, O: np.ndarray, angle: float) -> np.ndarray:
@@ -102,7 +126,9 @@ def write_series(out: Path, lm: BevelLoadedModel, results: list[BevelPosition], 
     pick = select_steps(cycle, steps)
     flank = _Flank(lm, results)
     pts, quads = flank.surface()
-    bodies = (BodyPart(B.body1, B.young, B.poisson), BodyPart(B.body2, B.young, B.poisson))
+    bl = pair.blank
+    bodies = (BodyPart(B.body1, B.young, B.poisson, loaded_teeth_tets(B.body1, bl.pinion.z)),
+              BodyPart(B.body2, B.young, B.poisson, loaded_teeth_tets(B.body2, bl.gear.z)))
     weights = [_weights_of(lm, results[k].pair, results[k]) for k in pick]
     U = [body.displacements(np.stack([w[i].T @ results[k].force for w, k in zip(weights, pick)], axis=1))
          for i, body in enumerate(bodies)]
