@@ -16,6 +16,8 @@ Files: ``paraview.pvd`` and ``paraview_<part>_<step>.vtu`` beside it (meshio, zl
 """
 from __future__ import annotations
 
+import logging
+import time
 from pathlib import Path
 from typing import Iterable, Sequence
 from xml.sax.saxutils import quoteattr
@@ -27,6 +29,8 @@ from ltca.fem.readout import element_stress_matrix
 from .vtu import write_vtu_file
 
 __all__ = ["select_steps", "stress_fields", "BodyPart", "flank_mesh", "write_series"]
+
+log = logging.getLogger(__name__)
 
 
 def select_steps(position: np.ndarray, steps: int | None, centre: float = 0.0) -> np.ndarray:
@@ -131,6 +135,7 @@ def write_series(out: str | Path, steps: Iterable[tuple[float, Sequence[tuple[st
         ``{"pvd": path, "files": number of files written, "timesteps": [...]}``.
     """
     out = Path(out)
+    t0 = time.perf_counter()
     rows, times, files = [], [], 0
     for j, (timestep, parts) in enumerate(steps):
         times.append(float(timestep))
@@ -143,4 +148,5 @@ def write_series(out: str | Path, steps: Iterable[tuple[float, Sequence[tuple[st
             f'  <!-- {comment.replace("--", "-")} -->\n'
             "  <Collection>\n" + "\n".join(rows) + "\n  </Collection>\n</VTKFile>\n")
     (out / "paraview.pvd").write_text(text)
+    log.info("ParaView series: %d steps, %d files (%.1f s)", len(times), files + 1, time.perf_counter() - t0)
     return {"pvd": out / "paraview.pvd", "files": files + 1, "timesteps": times}
