@@ -1,9 +1,12 @@
 """Surface loads on quadratic (6-node) facets of a P2 tetrahedral mesh: tractions and unit patch loads.
 
 Conventions of :mod:`ltca.fem.elastic` (``tri6`` facets: vertices 0-2, then mid-edge nodes of 01, 12, 20; dofs
-node-major). Loads integrate over the quadratic facets (curved surfaces exactly as meshed).
+node-major). Loads integrate over the quadratic facets (curved surfaces exactly as meshed), with scikit-fem's
+triangle rule on a uniform subdivision of each facet.
 """
 from __future__ import annotations
+
+import functools
 
 import numpy as np
 import scipy.sparse as sp
@@ -14,18 +17,25 @@ from .elastic import TRI_EDGES, _check_mesh, p2_shape
 __all__ = ["surface_traction_load", "patch_loads", "patch_quadrature"]
 
 
+@functools.lru_cache(maxsize=None)
+def _base_rule() -> tuple[np.ndarray, np.ndarray]:
+    """The 7-point degree-5 rule on a triangle (Strang & Fix 1973, table 4.1; Dunavant 1985) as scikit-fem
+    tabulates it: barycentric points (7, 3) and weights (7,) summing to 1."""
+    from skfem.quadrature import get_quadrature
+    from skfem.refdom import RefTri
+    X, W = get_quadrature(RefTri, 5)
+    if X.shape != (2, 7):
+        raise RuntimeError(f"scikit-fem's degree-5 triangle rule has {X.shape[1]} points, expected 7")
+    return np.column_stack([1.0 - X.sum(axis=0), X[0], X[1]]), 2.0 * W
+
+
 def _triangle_rule(refine: int) -> tuple[np.ndarray, np.ndarray]:
     """Barycentric points (q, 3) and weights (q,) summing to 1 on a triangle.
 
-    The 7-point degree-5 rule (Strang & Fix 1973, table 4.1; Dunavant 1985) applied on
-    each of the ``4**refine`` congruent sub-triangles of a uniform subdivision.
+    The 7-point degree-5 rule (:func:`_base_rule`) applied on each of the ``4**refine`` congruent sub-triangles of
+    a uniform subdivision (a composite rule: the cosine-bell patch loads are not polynomial on a facet).
     """
-    a1, b1, w1 = 0.0597158717897698, 0.4701420641051151, 0.1323941527885062
-    a2, b2, w2 = 0.7974269853530873, 0.1012865073234563, 0.1259391805448271
-    pts = np.array([[1 / 3, 1 / 3, 1 / 3],
-                    [a1, b1, b1], [b1, a1, b1], [b1, b1, a1],
-                    [a2, b2, b2], [b2, a2, b2], [b2, b2, a2]])
-    wts = np.array([0.225, w1, w1, w1, w2, w2, w2])
+    pts, wts = _base_rule()
     tris = np.eye(3)[None]  # sub-triangles as (s, 3 vertices, 3 bary)
     for _ in range(refine):
         v0, v1, v2 = tris[:, 0], tris[:, 1], tris[:, 2]

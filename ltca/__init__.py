@@ -21,9 +21,14 @@ folders ``geometry/`` and ``fem/`` beside ``ltca/``; the installer maps them to 
     cli.py         the ``ltca`` command
     cylindrical/, bevel/, planetary/   the gear kinds; drivetrain/, design/, study/, verify/ the other commands
 """
+import logging as _logging
 from pathlib import Path as _Path
 
 __version__ = "0.1.0"
+
+# Diagnostics go to the loggers ``ltca.*`` (ltca.fem and ltca.geometry included); the application configures the
+# handlers (``logging.basicConfig(level=logging.INFO)``, ``ltca -v``), the library only adds the null handler.
+_logging.getLogger(__name__).addHandler(_logging.NullHandler())
 
 _HERE = _Path(__file__).resolve().parent
 # A source checkout (tests, editable install): geometry/ and fem/ sit beside ltca/; installed, they are inside it.

@@ -226,8 +226,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--cache", default=None, help="directory for the mesh cache (default: none, cold run)")
     r.add_argument("--paraview-steps", type=_nonnegative_int, default=None, metavar="N",
                    help="positions of the first torque in the ParaView series paraview.pvd (displacement, stress, "
-                        "flank pressure), spread over the cycle with the pitch position; 0: none, more than the "
-                        "positions: all (default 10; FZG C14: about 0.15 s and 1.3 MB per position)")
+                        "flank pressure; every gear kind), spread over the cycle with the pitch (bevel: mean) "
+                        "position; 0: none, more than the positions: all (default 10; FZG C14: about 0.15 s and "
+                        "1.3 MB per position)")
     r.add_argument("--quiet", action="store_true", help="no progress output")
     r.set_defaults(func=_cmd_run)
 
@@ -380,6 +381,11 @@ def build_parser() -> argparse.ArgumentParser:
                     "case's name")
     ch.add_argument("--out", default=None, help="output directory for the CSV tables (default: print only)")
     ch.set_defaults(func=_cmd_chain)
+    verbose = ("diagnostics on stderr: -v the run's summary, each position's rounds, widenings and residual, the "
+               "mesh cache; -vv also the debug messages")
+    p.add_argument("-v", "--verbose", action="count", default=0, help=verbose)
+    for c in sub.choices.values():
+        c.add_argument("-v", "--verbose", action="count", default=0, dest="verbose_here", help=verbose)
     return p
 
 
@@ -465,6 +471,7 @@ def main(argv: list[str] | None = None) -> int:
     import matplotlib
     matplotlib.use("Agg")       # the command line writes files; the library never picks a backend
     args = build_parser().parse_args(argv)
+    _logging(max(args.verbose, getattr(args, "verbose_here", 0)))
     try:
         _resolve_files(args)
         _check_options(args)
@@ -480,6 +487,22 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except Exception as exc:  # noqa: BLE001 - the one place that sorts every failure into an exit status
         return _unexpected(args.command, exc)
+
+
+def _logging(level: int) -> None:
+    """Route the library's diagnostics (the ``ltca`` loggers) to stderr: INFO and above with -v, DEBUG with -vv;
+    without -v the command's own tables and warnings say what matters and the loggers stay silent."""
+    import logging
+    root = logging.getLogger("ltca")
+    root.handlers = [h for h in root.handlers if not getattr(h, "_ltca_cli", False)]
+    if level <= 0:
+        root.setLevel(logging.NOTSET)
+        return
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("ltca: %(levelname)s: %(name)s: %(message)s"))
+    handler._ltca_cli = True
+    root.addHandler(handler)
+    root.setLevel(logging.INFO if level == 1 else logging.DEBUG)
 
 
 def _unexpected(command: str, exc: BaseException) -> int:

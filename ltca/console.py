@@ -61,8 +61,8 @@ def print_bevel(result, head: dict) -> None:
 
 def print_planetary(result, head: dict) -> None:
     """The console table of ``ltca run`` of a planetary case (both directions per torque)."""
-    from .planetary.report import print_table as _table
-    from .planetary.run import ROW_KEYS, SHARE_MIN
+    from .planetary.analysis import ROW_KEYS, SHARE_MIN
+    from .planetary.run import print_table as _table
     _table([{k: (({p: round(v, 3) for p, v in r[k].items() if v >= SHARE_MIN}) if k == "mean_share" else r[k])
                   for k in ROW_KEYS} for r in head["results"]], ROW_KEYS)
     t = head["timings_s"]

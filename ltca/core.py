@@ -5,7 +5,9 @@ and scripts all come through here; a gear kind supplies its plan / execute / wri
 """
 from __future__ import annotations
 
+import logging
 import math
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
@@ -18,6 +20,8 @@ from .results import LoadedResult
 __all__ = ["run", "tca", "TcaResult", "plan", "execute", "ANALYSES"]
 
 Progress = Callable[[str], None]
+
+log = logging.getLogger(__name__)
 
 
 def _analysis(kind: str) -> Analysis:
@@ -57,7 +61,36 @@ def execute(case: Case, p: Any, *, progress: Progress | None = None, cache: str 
             store=None) -> LoadedResult:
     """Run a planned analysis (:func:`plan`); ``store`` keeps finished positions (resumable kinds)."""
     a = _analysis(case.kind)
-    return a.result(case, a.execute(p, progress, cache, store))
+    t0 = time.perf_counter()
+    run = a.execute(p, progress, cache, store)
+    result = a.result(case, run)
+    _log_run(case, p, result, a.bodies(run), time.perf_counter() - t0)
+    return result
+
+
+def _log_run(case: Case, p: Any, result: LoadedResult, bodies, seconds: float) -> None:
+    """The run's summary on the ``ltca.core`` logger: model, solver, convergence, reuse."""
+    if not log.isEnabledFor(logging.INFO):
+        return
+    solvers = []
+    for b in bodies:
+        method = getattr(getattr(b, "factorization", None), "method", None) or "factor freed"
+        t = getattr(b, "timings", {})
+        solvers.append(f"{b.n_dofs} dofs, {method} ({t.get('factorisation', float('nan')):.1f} s factorisation, "
+                       f"{t.get('solves', float('nan')):.1f} s unit-load solves)")
+    s = result.summary
+    log.info("%s (%s), fidelity %s: %s positions at %s N m in %.1f s; bodies: %s", case.name, case.kind,
+             getattr(p, "fidelity_name", "?"), s.get("positions", "?"),
+             ", ".join(f"{f.torque_nm:g}" for f in result.figures), seconds, "; ".join(solvers) or "none")
+    log.info("%s: converged %s, largest torque residual %.2g", case.name, result.converged,
+             result.max_torque_residual)
+    if s.get("positions_taken_over"):
+        log.info("%s: %d positions taken over from the interrupted run, %d computed", case.name,
+                 s["positions_taken_over"], s.get("positions_computed", 0))
+    for f in result.figures:
+        if not f.converged:
+            log.warning("%s: not every position converged at %g N m (largest torque residual %.2g)", case.name,
+                        f.torque_nm, f.max_torque_residual)
 
 
 def run(case: Case | str | Path, *, fidelity: str | None = None, positions: int | None = None,
@@ -108,7 +141,7 @@ def tca(case: Case | str | Path, *, positions: int | None = None) -> TcaResult:
         from .bevel.run import bevel_tca_summary
         return TcaResult(case, bevel_tca_summary(case.record, case.file)[0])
     if case.kind == "planetary":
-        from .planetary.run import planetary_tca_summary
+        from .planetary.analysis import planetary_tca_summary
         return TcaResult(case, planetary_tca_summary(case.record, positions)[0])
     _analysis(case.kind)          # names the command of a case that is not a gear pair
     raise AssertionError(case.kind)

@@ -29,9 +29,6 @@ def run_to_dir(case_path: str, out: str = "out", *, fidelity: str | None = None,
     case, p = plan(load_case(case_path), fidelity=fidelity, positions=positions, torques_nm=torques,
                    max_output_gb=max_output_gb)
     analysis = _analysis(case.kind)
-    if paraview_steps is not None and case.kind != "cylindrical":
-        raise CaseError("--paraview-steps", paraview_steps, f"only for a cylindrical case; a {case.kind} run writes "
-                        "no ParaView series (drop the option)")
     if resume and not analysis.resumable:
         raise CaseError("--resume", True, f"not available for a {case.kind} case (its positions are not stored); "
                         "run afresh")

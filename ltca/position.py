@@ -15,6 +15,7 @@ Units: mm, N, MPa, rad.
 """
 from __future__ import annotations
 
+import logging
 from typing import Callable, Iterable
 
 import numpy as np
@@ -25,6 +26,8 @@ from ltca.fem.contact import ContactNotConverged, ContactSolution, solve_contact
 from .errors import ConvergenceError
 
 __all__ = ["cell_compliance", "solve_rounds", "root_stresses"]
+
+log = logging.getLogger(__name__)
 
 
 def cell_compliance(body1, W1: sp.spmatrix, body2, W2: sp.spmatrix,
@@ -75,15 +78,24 @@ def solve_rounds(assemble: Callable[[], object], solve_args: Callable[[object], 
     ConvergenceError
         The contact problem did not converge (residual and advice in the message).
     """
-    for _ in range(rounds):
+    grown = False
+    for k in range(rounds):
         sy = assemble()
         C, gap0, lever, torque, active0 = solve_args(sy)
         try:
             sol = solve_contact(C, gap0, lever, torque, tol=tol, active0=active0)
         except ContactNotConverged as exc:
+            log.warning("%s: contact not converged in round %d (%d iterations, residual %.3g): %s", where, k + 1,
+                        exc.iterations, exc.residual, exc.advice)
             raise ConvergenceError(where, exc.residual, exc.iterations, exc.advice) from None
-        if not grow(sy, sol):
+        grown = grow(sy, sol)
+        if not grown:
             break
+    if grown:
+        log.warning("%s: still widening a window (or adding a pair) after %d rounds; the result is the last "
+                    "round's", where, rounds)
+    log.info("%s: %d cells, %d round(s) (%d widening(s) or added pairs), %d iterations, residual %.2g", where,
+             len(gap0), k + 1, k + int(grown), sol.iterations, sol.residual)
     return sy, sol
 
 

@@ -247,7 +247,7 @@ def test_every_package_says_what_it_holds():
 #: the command layer: the only modules that print (the console of a command); everything else is library
 COMMAND_MODULES = {
     "ltca.cli", "ltca.console", "ltca.driver", "ltca.cylindrical.run", "ltca.bevel.run", "ltca.planetary.run",
-    "ltca.planetary.report", "ltca.drivetrain.budget", "ltca.drivetrain.chain", "ltca.design.driver",
+    "ltca.drivetrain.budget", "ltca.drivetrain.chain", "ltca.design.driver",
     "ltca.design.bevel_torque", "ltca.study.runner", "ltca.rexs.cli",
 }
 

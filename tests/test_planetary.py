@@ -70,6 +70,33 @@ def test_both_directions_symmetric(run):
             {-int(k): v for k, v in r["mean_share"].items()})
 
 
+def test_paraview_series(run):
+    """paraview.pvd of the first torque, drive direction: a step per position (3 asked, fewer than the default
+    10), the satellite, the wheel and the satellite flank's pressure, read back by meshio; the flank's peak at each
+    position is the solver's peak there."""
+    import xml.etree.ElementTree as ET
+
+    import meshio
+    import xarray as xr
+    out, s = run
+    sets = ET.parse(out / "paraview.pvd").getroot().findall("./Collection/DataSet")
+    steps = sorted({float(x.get("timestep")) for x in sets})
+    assert len(steps) == 3 and len(sets) == 9
+    assert [x.get("name") for x in sets[:3]] == ["pinion", "gear", "flank"]
+    with xr.open_dataset(out / "results.nc") as ds:
+        solver = ds.max_pressure.isel(torque=0).values
+        position = ds.position.values
+    for x in sets:
+        m = meshio.read(out / x.get("file"))
+        if x.get("name") == "flank":
+            k = int(np.argmin(np.abs(position - float(x.get("timestep")))))
+            assert float(m.cell_data["contact_pressure_mpa"][0].max()) == pytest.approx(solver[k], rel=1e-6)
+        else:
+            assert m.point_data["displacement_mm"].shape == (len(m.points), 3)
+            assert np.all(np.isfinite(m.cell_data["von_mises_mpa"][0]))
+    assert s["paraview"]["flank_peak_mpa"] == pytest.approx(list(solver), rel=1e-6)
+
+
 def test_unloaded_gaps_symmetric_in_both_directions():
     """The exact window (both directions computed independently) is the mirror image: the reason the reverse
     direction is taken as the drive direction's mirror."""

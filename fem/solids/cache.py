@@ -1,6 +1,7 @@
 """Mesh cache: a meshed solid stored as ``<prefix>_<spec_hash>.npz`` and reloaded on a hit."""
 from __future__ import annotations
 
+import logging
 import os
 import time
 from pathlib import Path
@@ -11,6 +12,8 @@ from .mesh_record import BodyMesh
 
 __all__ = ["load_cached", "store_cached"]
 
+log = logging.getLogger(__name__)
+
 
 def load_cached(cache_dir, prefix: str, key: str) -> BodyMesh | None:
     """The mesh stored as ``<prefix>_<key>.npz`` in ``cache_dir``, or None (no cache, or a miss)."""
@@ -19,10 +22,13 @@ def load_cached(cache_dir, prefix: str, key: str) -> BodyMesh | None:
     t0 = time.perf_counter()
     path = Path(cache_dir) / f"{prefix}_{key}.npz"
     if not path.exists():
+        log.info("mesh cache miss: %s (meshing)", path)
         return None
     with np.load(path) as d:
         facets = {k[len("facet__"):]: d[k] for k in d.files if k.startswith("facet__")}
-        return BodyMesh(d["nodes"], d["tets"], facets, key, time.perf_counter() - t0)
+        mesh = BodyMesh(d["nodes"], d["tets"], facets, key, time.perf_counter() - t0)
+    log.info("mesh cache hit: %s (%d nodes, %d tets, %.2f s)", path, len(mesh.nodes), len(mesh.tets), mesh.seconds)
+    return mesh
 
 
 def store_cached(cache_dir, prefix: str, mesh: BodyMesh) -> None:
@@ -34,3 +40,4 @@ def store_cached(cache_dir, prefix: str, mesh: BodyMesh) -> None:
     tmp = path.with_suffix(f".tmp{os.getpid()}.npz")
     np.savez(tmp, nodes=mesh.nodes, tets=mesh.tets, **{f"facet__{k}": v for k, v in mesh.facets.items()})
     os.replace(tmp, path)
+    log.info("mesh cache stored: %s", path)

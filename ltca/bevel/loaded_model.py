@@ -6,6 +6,7 @@ evaluator (:class:`ltca.geometry.bevel.gaps.MeshGaps`) is rebuilt per assembly.
 """
 from __future__ import annotations
 
+import logging
 import time
 from dataclasses import replace
 
@@ -23,6 +24,9 @@ from .model import LOADED, MESHED, BevelBodies, BevelFidelity, BevelLoadedModel,
 __all__ = ["BevelFidelity", "BevelMounting", "BevelBodies", "BevelLoadedModel", "prepare_bodies", "member_flanks",
            "loaded_model", "body_t", "LOADED", "MESHED"]
 
+log = logging.getLogger(__name__)
+
+
 def member_flanks(pair: BevelPair, member: str) -> tuple[dict, float, float]:
     """The member's two generated flanks on the body's axial grid, the grid's root offset (mm) and the rotation
     of the convex flank that gives the design thickness (rad), as :class:`ltca.fem.solids.bevel_body.BevelBodySpec`
@@ -36,9 +40,11 @@ def member_flanks(pair: BevelPair, member: str) -> tuple[dict, float, float]:
         try:
             fl = {s: generate_flank(cut.flank(s), bl, member, 9, 13, off) for s in ("concave", "convex")}
             break
-        except MeshingError:
+        except MeshingError as exc:
             if k == len(offs) - 1:
                 raise
+            log.info("%s flank grid %.3f mm above the root cone not generated (%s); starting at %.3f mm, where the "
+                     "TCA's grid starts", member, off, exc, offs[k + 1])
     jm = 6
     rn = fl["concave"].meta["Rn"][:, jm]
     t_pitch = float(np.interp(0.0, rn, fl["concave"].u))

@@ -216,9 +216,11 @@ def _torque_summary(a: dict, runs: dict, T: float) -> dict:
 def _write_vtu(path: Path, res: list[BevelPosition]) -> None:
     """Cells of all positions as a point cloud on pinion tooth 0 (pinion body frame): pressure, position, pair."""
     import meshio
+
+    from ..vtu import write_vtu_file
     m = [r.force > 0 for r in res]
     pts = np.concatenate([r.r1[k] for r, k in zip(res, m)]) if res else np.zeros((0, 3))
     data = {"pressure_MPa": np.concatenate([r.pressure[k] for r, k in zip(res, m)]),
             "position": np.concatenate([np.full(k.sum(), i, float) for i, k in enumerate(m)]),
             "pair": np.concatenate([r.pair[k].astype(float) for r, k in zip(res, m)])}
-    meshio.write(path, meshio.Mesh(pts, [("vertex", np.arange(len(pts))[:, None])], point_data=data))
+    write_vtu_file(path, meshio.Mesh(pts, [("vertex", np.arange(len(pts))[:, None])], point_data=data))

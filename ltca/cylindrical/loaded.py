@@ -106,7 +106,7 @@ def solve_position(lm: LoadedModel, roll: float, torque: float, warm: PositionRe
         return more
 
     (strips, ds, sy), sol = solve_rounds(assemble, solve_args, grow, max_widen + 1,
-                                         f"contact at roll {np.degrees(roll):.3f} deg")
+                                         f"contact at roll {np.degrees(roll):.3f} deg, torque {torque * 1e-3:g} N m")
     F = sol.force
     T1, T2 = float(F @ sy.lever1), float(F @ sy.lever2)
     theta0 = float(first_contact(model, phi1, lm.teeth1, cycle=cycle))

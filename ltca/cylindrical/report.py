@@ -187,7 +187,7 @@ def write_vtu(path: Path, body, grid_force: np.ndarray, frame: np.ndarray) -> No
     re-applied to the factorised model once (patch loads), so the field is the FE solution itself."""
     import meshio
 
-    from .vtu import write_vtu_file
+    from ..vtu import write_vtu_file
     u = body.factorization.solve(body.patch @ grid_force).reshape(-1, 3)
     R, t = frame[:3, :3], frame[:3, 3]
     pts = body.mesh.nodes @ R.T + t

@@ -15,13 +15,14 @@ __all__ = ["Analysis", "figures_from"]
 class Analysis:
     """What a gear kind supplies: ``plan(case, fidelity, positions, torques_nm, max_output_gb)`` (validate and
     size, no FE work), ``execute(plan, progress, cache, store)`` (the analysis; returns the kind's run record),
-    ``result(case, run)`` (its LoadedResult) and ``write(result, head, stage, case_file, report, paraview_steps)``
-    (its files, summary.json excepted)."""
+    ``result(case, run)`` (its LoadedResult), ``write(result, head, stage, case_file, report, paraview_steps)``
+    (its files, summary.json excepted) and ``bodies(run)`` (the FE bodies' compliance records, for the run's log)."""
     plan: Callable
     execute: Callable
     result: Callable
     write: Callable
     resumable: bool
+    bodies: Callable = lambda run: ()
 
 
 def figures_from(rec: dict) -> TorqueFigures:

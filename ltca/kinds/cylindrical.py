@@ -29,4 +29,5 @@ def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report
     write_outputs(result._state, head, stage, case_file, report=report, paraview_steps=paraview_steps)
 
 
-ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True)
+ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True,
+                    bodies=lambda run: (run.lm.body1, run.lm.body2))

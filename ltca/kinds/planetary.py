@@ -6,6 +6,7 @@ Root stresses: ``pinion`` is the satellite, ``gear`` the wheel.
 """
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 import numpy as np
@@ -13,7 +14,7 @@ import xarray as xr
 
 from ..cases import Case
 from ..cylindrical.tca import ARCSEC_PER_RAD
-from ..planetary import run as prun
+from ..planetary import analysis as prun
 from ..results import LoadedResult
 from . import Analysis, figures_from
 
@@ -88,7 +89,19 @@ def _result(case: Case, run: prun.PlanetaryRun) -> LoadedResult:
 
 
 def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
-    prun.write_files(result._state, stage, result.dataset)
+    run = result._state
+    prun.write_files(run, stage, result.dataset)
+    if paraview_steps:
+        from ..cylindrical.paraview import write_series
+        t0 = time.perf_counter()
+        T = run.torques[0]
+        pv = write_series(stage, run.lm, run.results[0], T, steps=paraview_steps,
+                          comment=f"{run.plan.case.name}, satellite torque {T * 1e-3:g} N m, drive direction; "
+                                  "timestep = satellite angle, deg")
+        head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
+        head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": T * 1e-3, "position_deg": pv["roll_deg"],
+                            "flank_peak_mpa": pv["flank_peak_mpa"]}
 
 
-ANALYSIS = Analysis(plan=_plan, execute=prun.execute, result=_result, write=_write, resumable=False)
+ANALYSIS = Analysis(plan=_plan, execute=prun.execute, result=_result, write=_write, resumable=False,
+                    bodies=lambda run: (run.lm.body1, run.lm.body2))

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["write_csv", "print_table", "plot_gaps", "plot_load_sharing"]
+__all__ = ["write_csv", "format_table", "plot_gaps", "plot_load_sharing"]
 
 
 def write_csv(path, rows: list[dict]) -> None:
@@ -27,16 +27,14 @@ def _fmt(v) -> str:
     return str(v)
 
 
-def print_table(rows: list[dict], keys: list[str] | None = None) -> str:
-    """A fixed-width text table of ``rows`` (printed and returned)."""
+def format_table(rows: list[dict], keys: list[str] | None = None) -> str:
+    """A fixed-width text table of ``rows`` (the columns ``keys``, default every key of the first row)."""
     keys = keys or list(rows[0])
     cells = [[_fmt(r[k]) for k in keys] for r in rows]
     width = [max(len(k), *(len(c[i]) for c in cells)) for i, k in enumerate(keys)]
     lines = ["  ".join(k.ljust(w) for k, w in zip(keys, width))]
     lines += ["  ".join(c.ljust(w) for c, w in zip(row, width)) for row in cells]
-    text = "\n".join(lines)
-    print(text)
-    return text
+    return "\n".join(lines)
 
 
 def _plt():

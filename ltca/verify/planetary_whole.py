@@ -16,7 +16,7 @@ close can). Same quantities on both sides:
 * share: normal load of satellite tooth k over the sum (pair index k as in ``ltca run``; CalculiX: the norm of
   the summed forces of the tooth's two contact pairs, wheel tip corner and flank,
   :func:`ltca.verify.whole_gear.tooth_loads`); a pair carries load when its share is at least
-  :data:`ltca.planetary.run.SHARE_MIN`;
+  :data:`ltca.planetary.analysis.SHARE_MIN`;
 * peak flank pressure, MPa (CalculiX: elliptic fit across the band on the satellite, and the largest nodal
   value; information only: most pairs of this mesh touch at a tip edge, where the pressure is singular and
   both figures depend on the mesh).
@@ -72,7 +72,7 @@ def check_arguments(case, positions, torque_nm, band_um, fidelity) -> None:
 
 
 def _record(share: dict, theta: float, theta0: float, rb1: float, p: float, wall: float) -> dict:
-    from ..planetary.run import SHARE_MIN
+    from ..planetary.analysis import SHARE_MIN
     return {"te_um": 1e3 * rb1 * (theta - theta0), "te_arcsec": ARCSEC_PER_RAD * (theta - theta0),
             "share": {str(k): float(v) for k, v in sorted(share.items())},
             "loaded_pairs": sum(v >= SHARE_MIN for v in share.values()), "max_pressure": float(p), "wall_s": wall}
