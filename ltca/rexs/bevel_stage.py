@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 
 from .errors import RexsError
+from .mapping import Unmapped
 from .model import Component, RexsModel
 from .train import material_of
 
@@ -57,7 +58,6 @@ def bevel_case_dict(model: RexsModel, stage_id: int, pinion: Component, gear: Co
     """The case dict of bevel stage ``stage_id`` (``pinion`` and ``gear`` its members, torques in N m on the
     pinion). ``used`` records the attributes read; ``unmapped`` receives :class:`ltca.rexs.Unmapped` rows for what
     the case assumes or cannot hold."""
-    from .stages import Unmapped
     st = model.component(stage_id)
     z1, z2 = (abs(c.integer("number_of_teeth")) for c in (pinion, gear))
     used.take(pinion, "number_of_teeth")

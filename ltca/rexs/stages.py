@@ -49,27 +49,27 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .errors import RexsError
 from .bevel_stage import BEVEL_STAGE, bevel_case_dict
+from .errors import RexsError
+from .mapping import Unmapped, Used
 from .model import Component, RexsModel
-from .train import (GEAR_TYPES, MOD_TYPES, flanks_of, material_of, modifications_of, shaft_of, stage_gears_of,
-                    stage_torques, teeth_of, tools_of)
+from .train import (
+    GEAR_TYPES,
+    MOD_TYPES,
+    flanks_of,
+    material_of,
+    modifications_of,
+    shaft_of,
+    stage_gears_of,
+    stage_torques,
+    teeth_of,
+    tools_of,
+)
 
 __all__ = ["Unmapped", "StageInfo", "stage_infos", "stage_case_dict", "GEAR_TYPES", "STAGE_TYPES"]
 
 #: the stage components a case is made of
 STAGE_TYPES = ("cylindrical_stage", BEVEL_STAGE)
-
-
-@dataclass(frozen=True)
-class Unmapped:
-    """An attribute of the model the case cannot represent, and why."""
-    component: int
-    component_type: str
-    attribute: str
-    value: object
-    unit: str | None
-    reason: str
 
 
 @dataclass(frozen=True)
@@ -86,20 +86,6 @@ class StageInfo:
     planetary: int | None
     torques_nm: tuple[float, ...]
     kind: str = "cylindrical"
-
-
-class _Used:
-    """The attributes a mapping consumed, by component id."""
-
-    def __init__(self):
-        self.ids: dict[int, set[str]] = {}
-        self.reasons: dict[tuple[int, str], str] = {}
-
-    def take(self, c: Component, *attrs: str) -> None:
-        self.ids.setdefault(c.id, set()).update(attrs)
-
-    def skip(self, c: Component, attr: str, reason: str) -> None:
-        self.reasons[(c.id, attr)] = reason
 
 
 # ------------------------------------------------------------------------------------------ stage list
@@ -309,7 +295,7 @@ def stage_case_dict(model: RexsModel, stage_id: int, info: StageInfo | None = No
     if st.type not in STAGE_TYPES:
         raise RexsError(st.label, "-", f"not a stage of the types {', '.join(STAGE_TYPES)}", stage_id, model.file)
     info = info or next(i for i in stage_infos(model) if i.id == stage_id)
-    used, unmapped = _Used(), []
+    used, unmapped = Used(), []
     if st.type == BEVEL_STAGE:
         pin, gear = model.components[info.pinion], model.components[info.gear]
         data = bevel_case_dict(model, stage_id, pin, gear, _torque_list(torque_nm, info), used, unmapped)
@@ -415,7 +401,7 @@ def _gear_data_ids(model: RexsModel, stage_id: int) -> set[int]:
             if r.role("stage_gear_data") in model.components}
 
 
-def _leftovers(model: RexsModel, stage_id: int, comps: list[Component], used: _Used) -> list[Unmapped]:
+def _leftovers(model: RexsModel, stage_id: int, comps: list[Component], used: Used) -> list[Unmapped]:
     """Every attribute of the stage's components (and its stage gear data) that its mapping did not read."""
     comps = comps + [model.components[i] for i in sorted(_gear_data_ids(model, stage_id))]
     out, seen = [], set()
