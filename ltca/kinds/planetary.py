@@ -82,6 +82,8 @@ def _result(case: Case, run: prun.PlanetaryRun) -> LoadedResult:
                 max_pairs_loaded=max(r["pairs_max"] for r in run.rows), torques=records,
                 results=[dict(r) for r in run.rows], timings_s=run.timings,
                 reverse_direction="mirror image of the drive direction (symmetric teeth, axisymmetric supports)")
+    if run.computed or run.taken_over:
+        head.update(positions_computed=run.computed, positions_taken_over=run.taken_over)
     head["converged"] = all(r["converged"] for r in records)
     head["max_torque_residual"] = max(r["max_torque_residual"] for r in records)
     return LoadedResult(case=case, dataset=ds, summary=head, figures=tuple(figures_from(r) for r in records),
@@ -103,5 +105,5 @@ def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report
                             "flank_peak_mpa": pv["flank_peak_mpa"]}
 
 
-ANALYSIS = Analysis(plan=_plan, execute=prun.execute, result=_result, write=_write, resumable=False,
+ANALYSIS = Analysis(plan=_plan, execute=prun.execute, result=_result, write=_write, resumable=True,
                     bodies=lambda run: (run.lm.body1, run.lm.body2))

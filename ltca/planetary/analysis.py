@@ -110,6 +110,8 @@ class PlanetaryRun:
     plot: list
     results: list
     timings: dict
+    computed: int = 0
+    taken_over: int = 0
 
 
 def plan(case, fidelity=None, positions=None, torques_nm=None, max_output_gb: float = 2.0, file=None):
@@ -143,10 +145,10 @@ def execute(p: PlanetaryPlan, progress=None, cache=None, store=None) -> Planetar
     lm = prepare_satellite(sm, fid, phis, max(torques), case.far_teeth, cache, say)
     t_prep = time.perf_counter() - t0
     rb1 = sm.pair.pinion.r_base
-    rows, plot, results, t_contact = [], [], [], 0.0
-    for T in torques:
+    rows, plot, results, t_contact, lines = [], [], [], 0.0, []
+    for it, T in enumerate(torques):
         t0 = time.perf_counter()
-        res = solve_cycle(lm, sm, phis, T)
+        res = solve_cycle(lm, sm, phis, T, store, it, lines, progress)
         results.append(res)
         t_contact += time.perf_counter() - t0
         label = f"{100 * T / (rating.torque_Nm * 1e3):.0f} % ({T / 1e3:.0f} N m)"
@@ -163,7 +165,11 @@ def execute(p: PlanetaryPlan, progress=None, cache=None, store=None) -> Planetar
     say(f"rated torque (ISO 6336-3, S_F {case.rating.S_Fmin}, b {case.face_width} mm): {rating.torque_Nm:.1f} N m; "
         f"teeth modelled: satellite {list(lm.teeth1)}, wheel {list(lm.teeth2)}; {len(phis)} positions")
     timings = dict(prepare=t_prep, contact=t_contact, total=time.perf_counter() - t_start, **lm.timings)
-    return PlanetaryRun(p, sm, lm, rating, tuple(torques), phis, rows, plot, results, timings)
+    run = PlanetaryRun(p, sm, lm, rating, tuple(torques), phis, rows, plot, results, timings)
+    if store is not None:
+        store.rewrite_log(lines)
+        run.computed, run.taken_over = store.computed, store.taken_over
+    return run
 
 
 ROW_KEYS = ["direction", "percent_of_rated", "torque_nm", "pairs_min", "pairs_max", "loaded_pairs", "mean_share",

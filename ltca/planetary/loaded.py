@@ -113,16 +113,35 @@ class _Start:
     theta: float
 
 
-def solve_cycle(lm: LoadedModel, sm: SatelliteModel, phis: np.ndarray, torque: float) -> list:
+def solve_cycle(lm: LoadedModel, sm: SatelliteModel, phis: np.ndarray, torque: float, store=None, it: int = 0,
+                lines: list | None = None, progress=None) -> list:
     """Drive-direction contact (:class:`ltca.cylindrical.loaded.PositionResult`) at each position phi
     (roll = phi, :mod:`.model`) under ``torque`` (N mm, > 0), warm-started along the cycle.
 
     The rotation is counted from the symmetric placement, so the first start is the exact rigid rotation to
-    first contact (half the backlash) plus a single-pair deflection."""
+    first contact (half the backlash) plus a single-pair deflection. ``store`` (:class:`ltca.outputs.PositionStore`)
+    keeps each finished position (torque index ``it``) and gives back those an interrupted run finished: a position
+    taken over is the next one's warm start, as it was, so a resumed cycle is the uninterrupted one bit for bit.
+    ``lines`` receives a record per position; ``progress`` (a callable) a line per position."""
     rb1, b = lm.model.pinion.r_base, lm.model.face_width
     warm = _Start(-sm.mesh.window(float(phis[0])).drive + torque / (rb1 ** 2 * C_PRIME * b))
     out = []
-    for p in phis:
-        warm = solve_position(lm, float(p), float(torque), warm=warm)
+    for k, p in enumerate(phis):
+        old = store.load(it, k) if store is not None else None
+        if old is not None:
+            warm = old
+            store.taken_over += 1
+        else:
+            warm = solve_position(lm, float(p), float(torque), warm=warm)
         out.append(warm)
+        line = {"torque_nm": torque * 1e-3, "phi_deg": float(np.degrees(p)),
+                "te_loaded_arcsec": float((warm.theta - warm.theta0) * 180 / np.pi * 3600),
+                "max_pressure_mpa": float(warm.max_pressure), "torque_residual": float(warm.torque_residual)}
+        if lines is not None:
+            lines.append(line)
+        if store is not None and old is None:
+            store.save(it, k, warm, line)
+            store.computed += 1
+        if progress:
+            progress(f"{torque * 1e-3:g} N m: position {k + 1}/{len(phis)}  p_max {warm.max_pressure:7.0f} MPa")
     return out
