@@ -17,20 +17,30 @@ __all__ = ["FlankModification", "modification_depth", "profile_slope_from_roll_r
 class FlankModification:
     """Micro-geometry of one member (all lengths in mm).
 
-    tip_relief : C_a, depth at the tip; starts at ``tip_relief_start_radius`` and grows as
-        ((L - L_start) / (L_tip - L_start)) ** ``tip_relief_exponent``.
-    profile_crowning : C_alpha, parabola over the active profile [r_form, r_tip], zero at its middle.
-    lead_crowning : C_beta, parabola over the face width, zero at mid-face, C_beta at both ends.
-    lead_slope : f_Hbeta, linear over the face, zero at mid-face, +f/2 at z = +b/2.
-    pitch_errors : per tooth index (taken modulo the number of teeth), the tooth's position error along
-        the base tangent (+ = the drive flank moved back, so the coast flank moved forward).
-    profile_slope : f_Halpha, linear in the roll length over the active profile, zero at its middle,
-        +f/2 (material removed) at the tip (ISO 1328-1 profile slope deviation, sign: tip relieved).
-    profile_form : f_falpha, the parabolic (second-order) part of a profile form deviation over the active
-        profile, zero at its middle and f at both ends: + convex (material removed at the ends), - hollow.
-        Its range about the least-squares mean line is |f| (the ISO 1328-1 form deviation of a parabola);
-        higher-order waviness is not modelled.
-    lead_form : f_fbeta, the same over the face width (zero at mid-face, f at both ends).
+    Attributes
+    ----------
+    tip_relief : float
+        C_a, depth at the tip; starts at ``tip_relief_start_radius`` and grows as
+        ``((L - L_start) / (L_tip - L_start)) ** tip_relief_exponent``.
+    profile_crowning : float
+        C_alpha, parabola over the active profile [r_form, r_tip], zero at its middle.
+    lead_crowning : float
+        C_beta, parabola over the face width, zero at mid-face, C_beta at both ends.
+    lead_slope : float
+        f_Hbeta, linear over the face, zero at mid-face, +f/2 at z = +b/2.
+    pitch_errors : tuple of (int, float)
+        Per tooth index (taken modulo the number of teeth), the tooth's position error along the base tangent
+        (+ = the drive flank moved back, so the coast flank moved forward).
+    profile_slope : float
+        f_Halpha, linear in the roll length over the active profile, zero at its middle, +f/2 (material
+        removed) at the tip (ISO 1328-1 profile slope deviation, sign: tip relieved).
+    profile_form : float
+        f_falpha, the parabolic (second-order) part of a profile form deviation over the active profile, zero at
+        its middle and f at both ends: + convex (material removed at the ends), - hollow. Its range about the
+        least-squares mean line is ``|f|`` (the ISO 1328-1 form deviation of a parabola); higher-order waviness
+        is not modelled.
+    lead_form : float
+        f_fbeta, the same over the face width (zero at mid-face, f at both ends).
     """
     tip_relief: float = 0.0
     tip_relief_start_radius: float | None = None

@@ -389,7 +389,6 @@ def test_torque_record_finds_an_imported_torque():
 
 def test_a_stage_runs_through_the_one_api():
     """``ltca.rexs.read(path).stage(id)`` is a Case: ``with_values`` edits it and ``ltca.run`` takes it."""
-    import ltca
     case = rexs.read(FVA2).stage(19)
     assert case.kind == "cylindrical" and case.record == rexs.read(FVA2).stage_record(19)
     assert case.with_values({"analysis.fidelity": "coarse"}).record.fidelity == "coarse"
