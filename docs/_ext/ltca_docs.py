@@ -93,38 +93,53 @@ def iso6336_table() -> str:
 
 def whole_gear_tables() -> str:
     """Every ``*_calculix_whole.json``: per position CalculiX's figures beside ours stored with it."""
-    bounds = _test_bounds(ROOT / "tests" / "test_reference_calculix.py", "BOUNDS")
+    test = ROOT / "tests" / "test_reference_calculix.py"
+    bounds = _test_bounds(test, "BOUNDS")
+    remeasured = _test_bounds(test, "ROOT_REMEASURED")
     out = ["### Cylindrical pairs against whole-gear CalculiX models\n",
            "Bounds of `tests/test_reference_calculix.py` (relative; share absolute): "
            + ", ".join(f"{k} {v:g}" for k, v in bounds.items()) + ". The test compares ltca's live figures with "
-           "CalculiX's converged estimate; the tables show the finest CalculiX model of each file and ltca's "
-           "figures stored with it (`ours_at_freeze`).\n"]
-    quantities = (("te", "loaded TE [arcsec]", True), ("stiffness", "mesh stiffness [N/(mm um)]", True),
-                  ("flank_pressure", "flank peak pressure [MPa]", True))
+           "CalculiX's converged estimate; the tables show the finest CalculiX model of each file beside ltca's "
+           "figures stored with it (`ours_at_freeze`); a difference outside its bound is a strict expected failure "
+           "of that test, naming the numbers. The root stresses are compared live only (their stored figures "
+           "predate the fillet read-out).\n"]
+    quantities = (("te", "loaded TE [arcsec]"), ("stiffness", "mesh stiffness [N/(mm um)]"),
+                  ("flank_pressure", "flank peak pressure [MPa]"))
+
+    def within(q, ours, ref):
+        return "yes" if abs(ours - ref) <= bounds[q] * abs(ref) else "no"
+
     for path in sorted(REFERENCE.glob("*_calculix_whole.json")):
         rec = json.loads(path.read_text())
         unconverged = rec.get("unconverged") or {}
         rows = []
         for p in rec["positions"]:
             ours = p.get("ours_at_freeze") or {}
-            for q, label, rel in quantities:
+            where = [_fmt(p["roll_deg"], 3), p.get("contact", "-")]
+            for q, label in quantities:
                 if q not in p:
                     continue
-                note = "CalculiX not converged: not compared" if q in unconverged else ""
-                rows.append([_fmt(p["roll_deg"], 3), p.get("contact", "-"), label, _fmt(p[q]), _fmt(ours.get(q)),
-                             _diff(ours.get(q), p[q], rel) if not note else note])
+                if q in unconverged:
+                    rows.append(where + [label, _fmt(p[q]), "-", "-", "CalculiX not converged: not compared"])
+                elif q in ours:
+                    rows.append(where + [label, _fmt(p[q]), _fmt(ours[q]), _diff(ours[q], p[q]),
+                                         within(q, ours[q], p[q])])
+                else:
+                    rows.append(where + [label, _fmt(p[q]), "-", "-", "-"])
             if "share" in p and ours.get("share"):
-                rows.append([_fmt(p["roll_deg"], 3), p.get("contact", "-"), "load share per pair",
-                             _share_of(p["share"]), _share_of(ours["share"]), "-"])
+                worst = max(abs(ours["share"].get(k, 0.0) - v) for k, v in p["share"].items())
+                rows.append(where + ["load share per pair", _share_of(p["share"]), _share_of(ours["share"]),
+                                     f"{worst:+.3f}", "yes" if worst <= bounds["share"] else "no"])
             for member in ("pinion", "gear"):
-                if "root_stress" in p and f"root_{member}" in ours:
-                    ref = p["root_stress"][member]["max"]
-                    rows.append([_fmt(p["roll_deg"], 3), p.get("contact", "-"), f"root stress {member} [MPa]",
-                                 _fmt(ref), _fmt(ours[f"root_{member}"]), _diff(ours[f"root_{member}"], ref)])
+                if "root_stress" in p:
+                    live = f"root_{member}" in remeasured
+                    rows.append(where + [f"root stress {member} [MPa]", _fmt(p["root_stress"][member]["max"]),
+                                         "live" if live else "-", "-", "-"])
         out += [f"#### `{path.name}`: `{rec['case']}` at {rec['torque_nm']:g} N m\n",
                 f"CalculiX: {rec.get('calculix_version', '-')}, {rec.get('date', 'date not recorded')}; "
                 f"model: {rec.get('model', 'whole gears, every tooth')}; made by `{rec['command']}`.\n",
-                _table(["roll [deg]", "contact", "quantity", "CalculiX", "ltca", "difference"], rows)]
+                _table(["roll [deg]", "contact", "quantity", "CalculiX", "ltca", "difference", "within bound"],
+                       rows)]
     return "\n".join(out)
 
 
