@@ -44,6 +44,7 @@ exclude_patterns = ["_build", "_ext", "_generated", "**.ipynb_checkpoints", "aut
                     "auto_examples/*.zip", "auto_examples/*.json", "auto_examples/*.ipynb"]
 templates_path = []
 html_theme = "alabaster"
+smartquotes = False                      # option names such as --torque stay as typed
 html_static_path = []
 html_title = f"ltca {release}"
 html_theme_options = {"description": "Finite-element loaded tooth contact analysis of gears", "fixed_sidebar": True,

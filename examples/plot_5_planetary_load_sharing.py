@@ -4,7 +4,7 @@ Eccentric planetary satellite: load sharing over many pairs
 
 The satellite of an eccentric planetary drive in its internal central wheel (Kapitonov et al. 2014; shipped case
 ``eccentric_planetary_satellite``). Its teeth differ from the wheel's by one, so under load the elastic
-deflection closes the small gaps of the neighbouring pairs: several pairs share the load, more of them as the
+deflection closes the small gaps of the neighbouring pairs: several pairs share the load, and more evenly as the
 torque grows. ``ltca.run`` solves the multi-pair contact at each position; ``pair_load`` holds each pair's
 normal load.
 """
@@ -25,7 +25,8 @@ for t in ds.torque.values:
     print(f"{t:6.0f} N m: up to {pairs} pairs in contact, largest share {float(s.max()):.2f}, "
           f"loaded TE {float(ds.te_loaded_um.sel(torque=t).mean()):.1f} um on the line of action")
 assert result.converged
-assert int((share.sel(torque=400.0) > 0.01).sum("pair").max()) > int((share.sel(torque=50.0) > 0.01).sum("pair").max())
+# the load spreads over the pairs as the torque grows: the largest share falls
+assert float(share.sel(torque=400.0).max()) < float(share.sel(torque=50.0).max())
 
 # %%
 # The share of each tooth pair at the middle position, at both torques.

@@ -33,8 +33,9 @@ with tempfile.TemporaryDirectory() as tmp:
 for v in summary["variables"]:
     print(f"{v['name']:22} ({v['unit']}): baseline {v['baseline']:6.2f}, optimum {v['optimum']:6.2f}")
 base, best = summary["baseline"], summary["optimum"]
-print(f"objective (loaded TE ptp at 200 N m): baseline {base['objective']:.2f}, optimum {best['objective']:.2f} arcsec")
-assert best["objective"] < base["objective"]
+print(f"objective (loaded TE ptp at 200 N m): baseline {base['objective_arcsec']:.2f}, "
+      f"optimum {best['objective_arcsec']:.2f} arcsec")
+assert best["feasible"] and best["objective_arcsec"] < base["objective_arcsec"]
 
 # %%
 # Left: the loaded TE peak-to-peak against the torque (Harris map) of both designs; right: the objective of each
@@ -46,8 +47,13 @@ for name in ("baseline", "optimum"):
 ax_h.set(xlabel="pinion torque [N m]", ylabel="loaded TE peak-to-peak [arcsec]", title="Harris map")
 ax_h.legend()
 ax_h.grid(alpha=0.3)
-objective = [h["objective"] for h in history if "objective" in h]
-ax_s.plot(range(1, len(objective) + 1), objective, "o-")
-ax_s.set(xlabel="candidate", ylabel="objective [arcsec]", title="search history")
+tried = [h for h in history if h.get("role") in ("start", "search")]
+n = range(1, len(tried) + 1)
+ax_s.plot(n, [h["objective"] for h in tried], "-", color="0.6")
+for feasible, marker, label in ((True, "o", "feasible"), (False, "x", "infeasible: a constraint violated")):
+    ax_s.plot([k for k, h in zip(n, tried) if h["feasible"] == feasible],
+              [h["objective"] for h in tried if h["feasible"] == feasible], marker, ls="none", label=label)
+ax_s.set(xlabel="candidate", ylabel="loaded TE peak-to-peak [arcsec]", title="search history")
+ax_s.legend()
 ax_s.grid(alpha=0.3)
 fig.tight_layout()
