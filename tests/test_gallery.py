@@ -45,3 +45,28 @@ def test_example_runs(script: Path, tmp_path: Path):
                           text=True, timeout=1200)
     assert proc.returncode == 0, f"{script.name} failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"
     assert "figures: " in proc.stdout
+
+
+def test_plot_pattern_draws_the_torque_asked_for():
+    """``ds.ltca.plot_pattern``: the pattern of the nearest torque, flank position across, face (or height) up."""
+    import numpy as np
+    import xarray as xr
+
+    import ltca.accessor  # noqa: F401  (registers ``ds.ltca``)
+    from ltca.figures import subplots
+    rng = np.random.default_rng(1)
+    cyl = xr.Dataset({"pressure_envelope": (("torque", "flank_roll", "face"), rng.uniform(0, 1500, (2, 4, 3)))},
+                     coords={"torque": [100.0, 200.0], "flank_roll": [5.0, 10.0, 15.0, 20.0], "face": [-5.0, 0, 5]})
+    ax = cyl.ltca.plot_pattern(torque=190.0, ax=subplots()[1])
+    mesh = ax.collections[0]
+    want = cyl.pressure_envelope.sel(torque=200.0).values.T          # (face, flank_roll)
+    assert np.array_equal(np.asarray(mesh.get_array()).reshape(want.shape), want)
+    assert mesh.get_clim() == (0.0, float(want.max()))
+    assert "200 N m" in ax.get_title()
+    bevel = xr.Dataset({"pattern": (("torque", "Rn", "L"), rng.uniform(0, 1500, (1, 3, 5)))},
+                       coords={"torque": [175.0], "Rn": [-1.0, 0.0, 1.0], "L": [70.0, 75, 80, 85, 90]})
+    mesh = bevel.ltca.plot_pattern(ax=subplots()[1], vmax=900.0).collections[0]
+    assert np.array_equal(np.asarray(mesh.get_array()).reshape(3, 5), bevel.pattern.values[0])
+    assert mesh.get_clim() == (0.0, 900.0)
+    with pytest.raises(ValueError, match="bearing pattern"):
+        xr.Dataset({"te_loaded": ("torque", [1.0])}, coords={"torque": [1.0]}).ltca.plot_pattern()
