@@ -10,8 +10,8 @@ from math import atan, cos, pi, radians, sin, sqrt, tan
 
 import pytest
 
-from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 from ltca.bevel.iso10300 import iso10300_b1, virtual_gears
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 
 Z1, Z2, M, B = 12, 36, 5.08, 25.4
 BETA, ALPHA = radians(35.0), radians(22.5)

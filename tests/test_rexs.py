@@ -155,6 +155,7 @@ SUN_PLANET_RUN = HERE / "sun_planet_211_coarse"
 
 def _check_write_back(run_dir: Path, tmp_path: Path) -> None:
     import xarray as xr
+
     from ltca.rexs.results import read_results, results_from_dataset, write_results
     for src in (PLANET, PLANET.with_suffix(".rexsj")):
         rx = rexs.read(src)
@@ -377,6 +378,7 @@ def test_torque_record_finds_an_imported_torque():
     """An imported torque has many digits (530.516476972984 N m per planet mesh); summary.json rounds it to 6
     decimals and the torques of a run are not sorted: its record is still found."""
     import xarray as xr
+
     from ltca.cylindrical.sweep import torque_record
     tq = [530.516476972984, 100.25]
     ds = xr.Dataset({"te_loaded_ptp_um": ("torque", [8.45, 1.74]),

@@ -11,9 +11,9 @@ finishes; ``resume`` replays the finished ones (:mod:`ltca.design.history`).
 """
 from __future__ import annotations
 
+import itertools
 import os
 import sys
-import itertools
 import time
 from dataclasses import dataclass, field
 from pathlib import Path

@@ -17,9 +17,9 @@ import numpy as np
 from ltca.geometry.satellite import plot_forming, rated_torque, unloaded_gaps
 
 from ..case import FIDELITIES
-from ..errors import CaseError
 from ..cylindrical.loaded_model import Fidelity
 from ..cylindrical.tca import ARCSEC_PER_RAD
+from ..errors import CaseError
 from .case import compare_case_forming, load_planetary_case
 from .loaded import positions, prepare_satellite, solve_cycle
 from .model import build_satellite_model

@@ -47,8 +47,18 @@ from dataclasses import dataclass
 
 from .errors import RexsError
 from .model import Component, RexsModel
-from .train import (GEAR_TYPES, MOD_TYPES, flanks_of, material_of, modifications_of, shaft_of, stage_gears_of,
-                    stage_torques, teeth_of, tools_of)
+from .train import (
+    GEAR_TYPES,
+    MOD_TYPES,
+    flanks_of,
+    material_of,
+    modifications_of,
+    shaft_of,
+    stage_gears_of,
+    stage_torques,
+    teeth_of,
+    tools_of,
+)
 
 __all__ = ["Unmapped", "StageInfo", "stage_infos", "stage_case_dict", "GEAR_TYPES"]
 
