@@ -31,6 +31,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ltca.geometry.cylindrical import arc_length, helical_flank
+
 from .elastic import assemble_stiffness
 from .fillet import fillet_points, fillet_size
 from .loads import patch_loads, patch_quadrature

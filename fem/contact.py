@@ -67,8 +67,8 @@ class ContactSolution:
     iterations : int
         Number of linear (Cholesky) solves.
     residual : float
-        max of: penetration / deflection scale, |gap| on active cells / deflection scale,
-        |h.F - load| / load, measured on the raw (unclipped) solution.
+        max of: penetration / deflection scale, ``|gap|`` on active cells / deflection scale,
+        ``|h.F - load| / load``, measured on the raw (unclipped) solution.
     active : ndarray of bool, shape (n,)
         Cells carrying load.
     """

@@ -25,7 +25,7 @@ so that, with p = 1/(4ab) and the corner sum  S[f] = f(x+a, y+b) - f(x-a, y+b) -
     u_z(x, y, z) = p (1 + nu) / (2 pi E) S[ 2 (1 - nu) (X asinh(..) + Y asinh(..)) - (1 - 2 nu) z atan(..) ].
 
 At z = 0 this is Love's (1929) surface solution for a uniformly loaded rectangle
-(Johnson 1985, sec. 3.3 eq. 3.25): u_z = p (1 - nu^2) / (pi E) S[X asinh(Y/|X|) + Y asinh(X/|Y|)].
+(Johnson 1985, sec. 3.3 eq. 3.25): ``u_z = p (1 - nu^2) / (pi E) S[X asinh(Y/|X|) + Y asinh(X/|Y|)]``.
 The primitives are written odd in X and in Y so that the corner sum is valid on every side of the cell.
 """
 from __future__ import annotations

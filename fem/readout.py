@@ -8,7 +8,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.spatial import cKDTree
 
-from .elastic import EDGES, _T, _affine, _check_mesh, lame, p2_shape
+from .elastic import _T, EDGES, _affine, _check_mesh, lame, p2_shape
 
 __all__ = ["locate_points", "interpolation_matrix", "stress_matrix", "element_stress_matrix", "nodal_stress"]
 

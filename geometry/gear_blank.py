@@ -53,15 +53,23 @@ class GearBlank:
 
     Parameters
     ----------
-    z : int                 teeth, integer in [3, 10000].
-    m_n : float             normal module, mm, > 0.
-    alpha_n : float         normal pressure angle, rad, in (0, pi/4].
-    beta : float            helix angle at the reference circle, rad, |beta| < 1.2 (sign = hand, + right).
-    x : float               profile shift coefficient, [-3, 3]; positive thickens the tooth
-                            (internal: thickens the internal tooth, narrows the space).
-    d_tip : float | None    tip diameter, mm; None -> external d + 2 m_n (1 + x), internal d - 2 m_n (1 + x).
-    thickness_allowance : float  normal tooth thickness reduction (total, mm), |A| < m_n; > 0 thins.
+    z : int
+        Teeth, an integer in [3, 10000].
+    m_n : float
+        Normal module, mm, > 0.
+    alpha_n : float
+        Normal pressure angle, rad, in (0, pi/4].
+    beta : float
+        Helix angle at the reference circle, rad, ``|beta| < 1.2`` (sign = hand, + right).
+    x : float
+        Profile shift coefficient, [-3, 3]; positive thickens the tooth (internal: thickens the internal tooth,
+        narrows the space).
+    d_tip : float or None
+        Tip diameter, mm; None -> external d + 2 m_n (1 + x), internal d - 2 m_n (1 + x).
+    thickness_allowance : float
+        Normal tooth thickness reduction (total, mm), ``|A| < m_n``; > 0 thins.
     internal : bool
+        A ring with internal teeth.
     """
 
     z: int

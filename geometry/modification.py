@@ -22,29 +22,42 @@ __all__ = ["FlankModification", "modification_depth", "profile_slope_from_roll_r
 class FlankModification:
     """Micro-geometry of one member (all lengths in mm).
 
-    tip_relief : C_a, depth at the tip; starts at ``tip_relief_start_radius`` and grows as
-        ((L - L_start) / (L_tip - L_start)) ** ``tip_relief_exponent``.
-    profile_crowning : C_alpha, parabola over the active profile [r_form, r_tip], zero at its middle.
-    lead_crowning : C_beta, parabola over the face width, zero at mid-face, C_beta at both ends.
-    lead_slope : f_Hbeta, linear over the face, zero at mid-face, +f/2 at z = +b/2.
-    pitch_errors : per tooth index (taken modulo the number of teeth), the tooth's position error along
-        the base tangent (+ = the drive flank moved back, so the coast flank moved forward).
-    profile_slope : f_Halpha, linear in the roll length over the active profile, zero at its middle,
-        +f/2 (material removed) at the tip (ISO 1328-1 profile slope deviation, sign: tip relieved).
-    profile_form : f_falpha, the parabolic (second-order) part of a profile form deviation over the active
-        profile, zero at its middle and f at both ends: + convex (material removed at the ends), - hollow.
-        Its range about the least-squares mean line is |f| (the ISO 1328-1 form deviation of a parabola);
-        higher-order waviness is not modelled.
-    lead_form : f_fbeta, the same over the face width (zero at mid-face, f at both ends).
-    root_relief : C_f, depth at ``root_relief_end_radius`` (the start of the active profile); starts at
-        ``root_relief_start_radius`` and grows as ((L - L_start) / (L_end - L_start)) ** ``root_relief_exponent``.
-    end_relief : ((C_I, L_I), (C_II, L_II)): depth at the datum face (z = -b/2) and the non-datum face (z = +b/2)
-        and the axial length over which it falls to zero, as (1 - d / L) ** ``end_relief_exponent`` with d the
-        distance from that face.
-    triangular_tip_relief : C_Ea, depth at the corner of the tip edge and the face end(s) of
-        ``triangular_tip_relief_faces`` (-1 datum, +1 non-datum, 0 both). Zero on the line from the tip edge at
-        ``triangular_tip_relief_length`` (L_Ea) from the face to the face end at ``triangular_tip_relief_start_radius``
-        (d_Ea / 2); linear in the distance beyond that line, C_Ea at the corner.
+    Attributes
+    ----------
+    tip_relief : float
+        C_a, depth at the tip; starts at ``tip_relief_start_radius`` and grows as
+        ``((L - L_start) / (L_tip - L_start)) ** tip_relief_exponent``.
+    profile_crowning : float
+        C_alpha, parabola over the active profile [r_form, r_tip], zero at its middle.
+    lead_crowning : float
+        C_beta, parabola over the face width, zero at mid-face, C_beta at both ends.
+    lead_slope : float
+        f_Hbeta, linear over the face, zero at mid-face, +f/2 at z = +b/2.
+    pitch_errors : tuple of (int, float)
+        Per tooth index (taken modulo the number of teeth), the tooth's position error along the base tangent
+        (+ = the drive flank moved back, so the coast flank moved forward).
+    profile_slope : float
+        f_Halpha, linear in the roll length over the active profile, zero at its middle, +f/2 (material
+        removed) at the tip (ISO 1328-1 profile slope deviation, sign: tip relieved).
+    profile_form : float
+        f_falpha, the parabolic (second-order) part of a profile form deviation over the active profile, zero at
+        its middle and f at both ends: + convex (material removed at the ends), - hollow. Its range about the
+        least-squares mean line is ``|f|`` (the ISO 1328-1 form deviation of a parabola); higher-order waviness
+        is not modelled.
+    lead_form : float
+        f_fbeta, the same over the face width (zero at mid-face, f at both ends).
+    root_relief : float
+        C_f, depth at ``root_relief_end_radius`` (the start of the active profile); starts at
+        ``root_relief_start_radius`` and grows as ``((L - L_start) / (L_end - L_start)) ** root_relief_exponent``.
+    end_relief : tuple of two (float, float)
+        ((C_I, L_I), (C_II, L_II)): depth at the datum face (z = -b/2) and the non-datum face (z = +b/2) and the
+        axial length over which it falls to zero, as ``(1 - d / L) ** end_relief_exponent`` with d the distance
+        from that face.
+    triangular_tip_relief : float
+        C_Ea, depth at the corner of the tip edge and the face end(s) of ``triangular_tip_relief_faces`` (-1 datum,
+        +1 non-datum, 0 both). Zero on the line from the tip edge at ``triangular_tip_relief_length`` (L_Ea) from
+        the face to the face end at ``triangular_tip_relief_start_radius`` (d_Ea / 2); linear in the distance
+        beyond that line, C_Ea at the corner.
     """
     tip_relief: float = 0.0
     tip_relief_start_radius: float | None = None

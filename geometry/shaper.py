@@ -26,10 +26,14 @@ class ShaperCutter:
 
     Parameters
     ----------
-    z0 : int       shaper teeth, >= 8.
-    x0 : float     shaper profile shift coefficient, |x0| <= 2.
-    ha0 : float    shaper addendum over its shifted datum, mm: tip radius r0 + x0 m_n + ha0; > 0.
-    rho0 : float   shaper tip rounding radius, mm, 0 <= rho0 < ha0.
+    z0 : int
+        Shaper teeth, >= 8.
+    x0 : float
+        Shaper profile shift coefficient, ``|x0| <= 2``.
+    ha0 : float
+        Shaper addendum over its shifted datum, mm: tip radius r0 + x0 m_n + ha0; > 0.
+    rho0 : float
+        Shaper tip rounding radius, mm, 0 <= rho0 < ha0.
     """
 
     z0: int

@@ -30,8 +30,10 @@ PAIR_KINDS = ("cylindrical", "bevel", "planetary")
 
 
 def set_key(data: dict, key: str, value: Any) -> None:
-    """Set dotted key ``key`` (e.g. ``"pinion.modifications.lead_crowning_um"``) of TOML tables in place, making
-    the tables on the way as needed."""
+    """Set dotted key ``key`` of TOML tables in place.
+
+    E.g. ``"pinion.modifications.lead_crowning_um"``; the tables on the way are made as needed.
+    """
     *path, last = key.split(".")
     for p in path:
         nxt = data.setdefault(p, {})
@@ -109,6 +111,7 @@ class Case:
     file : str or None
         The file it was read from (paths inside a case, e.g. a study's base case, are relative to it).
     """
+
     kind: str
     name: str
     record: Any = field(repr=False)
@@ -118,7 +121,8 @@ class Case:
     def with_values(self, values: Mapping[str, Any]) -> "Case":
         """A validated copy with the dotted keys of ``values`` set (engineer's units, as in the file).
 
-        Raises :class:`ltca.errors.CaseError` for an unknown key or a value out of its range."""
+        Raises :class:`ltca.errors.CaseError` for an unknown key or a value out of its range.
+        """
         if not isinstance(values, Mapping):
             raise CaseError("values", type(values).__name__, "a mapping of dotted case keys to values")
         data = copy.deepcopy(self.data)
@@ -139,8 +143,10 @@ class Case:
 
 
 def case_from_data(data: Mapping, file: str | None = None, name: str | None = None) -> Case:
-    """Validate TOML tables as a case of their kind; ``name`` when the tables give none (default: the file's
-    stem)."""
+    """Validate TOML tables as a case of their kind.
+
+    ``name`` names the case when the tables give none (default: the file's stem).
+    """
     if not isinstance(data, Mapping):
         raise CaseError("case", type(data).__name__, "TOML tables (a mapping)", file)
     data = copy.deepcopy(dict(data))
@@ -155,7 +161,8 @@ def case_from_data(data: Mapping, file: str | None = None, name: str | None = No
 def load_case(name_or_path: str | Path) -> Case:
     """Read and validate a case file, or a shipped case by name (``"fzg_c14"``, ``"spiral_bevel_cao2008"``).
 
-    Raises :class:`ltca.errors.CaseError` for a missing file or any bad value (field, value, what is allowed)."""
+    Raises :class:`ltca.errors.CaseError` for a missing file or any bad value (field, value, what is allowed).
+    """
     from .shipped import case_path
     from .validation import read_case_file
     path = case_path(str(name_or_path))

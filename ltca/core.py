@@ -1,5 +1,7 @@
-"""The one entry of every loaded analysis: :func:`run` a :class:`ltca.cases.Case` of any gear kind and get a
-:class:`ltca.results.LoadedResult`; :func:`save_result` writes it into a run folder. The command line, studies
+"""The one entry of every loaded analysis.
+
+:func:`run` a :class:`ltca.cases.Case` of any gear kind and get a :class:`ltca.results.LoadedResult`;
+:func:`ltca.results.save_result` writes it into a run folder. The command line, studies
 and scripts all come through here; a gear kind supplies its plan / execute / write functions
 (:mod:`ltca.kinds`), nothing else. Nothing here prints or picks a plotting backend.
 """
@@ -124,9 +126,12 @@ def run(case: Case | str | Path, *, fidelity: str | None = None, positions: int 
 
 @dataclass(frozen=True)
 class TcaResult:
-    """The unloaded analysis of a gear-pair case: the case and its summary (engineer's units: contact path,
-    unloaded TE in arcsec, contact ratios; bevel: machine settings and the TCA of both flanks; planetary: the
-    unloaded gaps of every pair)."""
+    """The unloaded analysis of a gear-pair case: the case and its summary.
+
+    The summary is in engineer's units (contact path, unloaded TE in arcsec, contact ratios; bevel: machine settings and the TCA of both flanks; planetary: the
+    unloaded gaps of every pair).
+    """
+
     case: Case
     summary: dict
 

@@ -9,8 +9,8 @@ import time
 
 from .console import print_result
 from .core import _analysis, execute, plan
-from .results import write_into
 from .errors import CaseError
+from .results import write_into
 
 __all__ = ["run_to_dir"]
 

@@ -1,6 +1,8 @@
-"""Figures without pyplot: the library draws on :class:`matplotlib.figure.Figure` objects, so it never picks or
-changes a backend, never opens a window and never registers a figure with a notebook. :func:`subplots` and
-:func:`figure` take pyplot's arguments; :func:`close` releases a figure's artists."""
+"""Figures without pyplot.
+
+The library draws on :class:`matplotlib.figure.Figure` objects, so it never picks or changes a backend, never opens a window and never registers a figure with a notebook. :func:`subplots` and
+:func:`figure` take pyplot's arguments; :func:`close` releases a figure's artists.
+"""
 from __future__ import annotations
 
 from matplotlib import cm

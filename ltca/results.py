@@ -2,20 +2,21 @@
 
 Vocabulary (the same names and units in ``summary.json``, ``results.nc``, the plots and this API):
 
-=================================  ==========  ==================================================================
-``te_loaded``, ``te_unloaded``     arcsec      transmission error of the driven member: its lag behind the
-                                               rigid-body position, positive when it lags
-``te_loaded_ptp_arcsec``           arcsec      peak-to-peak of the loaded TE over the cycle
-``te_loaded_mean_arcsec``          arcsec      mean of the loaded TE over the cycle
-``max_flank_pressure_mpa``         MPa         largest contact pressure away from edge contact (converges)
-``max_contact_pressure_mpa``       MPa         largest cell pressure, edge contact included (mesh-dependent at
-                                               a sharp edge)
-``max_root_stress_mpa``            MPa         largest principal fillet stress, per member
-``mesh_stiffness_mean_n_per_um``   N/um        mean mesh stiffness of the whole face (normal load over the
-                                               approach)
-``mesh_stiffness_mean_n_per_mm_um`` N/(mm um)  the same per face width (cylindrical and bevel pairs)
-``converged``, ``max_torque_residual``         every position's torque balance met (relative residual)
-=================================  ==========  ==================================================================
+===================================  ==========  ==================================================================
+``te_loaded``, ``te_unloaded``       arcsec      transmission error of the driven member: its lag behind the
+                                                 rigid-body position, positive when it lags
+``te_loaded_ptp_arcsec``             arcsec      peak-to-peak of the loaded TE over the cycle
+``te_loaded_mean_arcsec``            arcsec      mean of the loaded TE over the cycle
+``max_flank_pressure_mpa``           MPa         largest contact pressure away from edge contact (converges)
+``max_contact_pressure_mpa``         MPa         largest cell pressure, edge contact included (mesh-dependent at
+                                                 a sharp edge)
+``max_root_stress_mpa``              MPa         largest principal fillet stress, per member
+``mesh_stiffness_mean_n_per_um``     N/um        mean mesh stiffness of the whole face (normal load over the
+                                                 approach)
+``mesh_stiffness_mean_n_per_mm_um``  N/(mm um)   the same per face width (cylindrical and bevel pairs)
+``converged``                        -           every position's torque balance met
+``max_torque_residual``              -           the largest relative torque-balance residual
+===================================  ==========  ==================================================================
 
 Every dataset has the coordinates ``torque`` (N m, pinion; or satellite for a planetary pair) and ``cycle``
 (position in mesh cycles, 0 at the pitch or mean point) beside its kind's own (``position``: roll in deg for
@@ -43,6 +44,7 @@ TE_SIGN = "TE is the driven member's lag behind its rigid-body position: positiv
 @dataclass(frozen=True)
 class TorqueFigures:
     """Headline figures of one torque, in the vocabulary of the module docstring (NaN where a kind has none)."""
+
     torque_nm: float
     te_loaded_ptp_arcsec: float
     te_unloaded_ptp_arcsec: float
@@ -75,6 +77,7 @@ class LoadedResult:
     timings : dict
         Wall time per stage (s).
     """
+
     case: Case
     dataset: xr.Dataset
     summary: dict
@@ -103,8 +106,11 @@ class LoadedResult:
         return min(self.figures, key=lambda f: abs(f.torque_nm - torque_nm))
 
     def save(self, out: str | Path, *, report: bool = True, paraview_steps: int = 10) -> Path:
-        """Write what ``ltca run`` writes into the folder ``out`` (created; locked while writing; every file
-        atomic; ``run.json`` records the status). Returns the folder."""
+        """Write what ``ltca run`` writes into the folder ``out``; return the folder.
+
+        The folder is created and locked while writing; every file is written atomically; ``run.json`` records
+        the status.
+        """
         return save_result(self, out, report=report, paraview_steps=paraview_steps)
 
 
@@ -128,8 +134,10 @@ def signature(case: Case, **settings) -> dict:
 
 
 def write_into(result: LoadedResult, out: Path, *, report: bool = True, paraview_steps: int = 10) -> dict:
-    """Write a result's files into the run folder ``out`` (already locked): every file through a staging folder,
-    ``summary.json`` last. Returns the summary as written."""
+    """Write a result's files into the run folder ``out`` (already locked); return the summary as written.
+
+    Every file goes through a staging folder, ``summary.json`` last.
+    """
     from .outputs import staging, write_bytes_atomic, write_json_atomic
     from .validation import read_case_file
     head = dict(result.summary)

@@ -22,13 +22,13 @@ Imports nothing of ours but :mod:`ltca.errors`.
 from __future__ import annotations
 
 import difflib
-
 import math
 import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
+
+import tomllib
 
 from .errors import CaseError
 

@@ -68,8 +68,9 @@ def test_benchmark_reports_medians(monkeypatch):
     per member call + 0.25 s per pinion flank; tca 5, 7, 6 s; separation 9, 8, 10 s). Speed itself is measured
     and printed, not asserted."""
     import time as _time
-    import ltca.geometry.bevel.generation as gen
+
     import ltca.bevel.run as run
+    import ltca.geometry.bevel.generation as gen
     clock = [1000.0]
     steps = {"synthesis": iter([3.0, 1.0, 2.0]), "tca": iter([5.0, 7.0, 6.0]), "separation": iter([9.0, 8.0, 10.0])}
 

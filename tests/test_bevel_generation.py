@@ -7,11 +7,25 @@ from scipy.interpolate import CubicSpline
 
 from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 from ltca.geometry.bevel.cutter import HeadCutter
-from ltca.geometry.bevel.generation import (MeshingError, generate_flank, generate_member, normal_thickness,
-                                       solve_axial_points, standard_gear_cut, surface_state)
+from ltca.geometry.bevel.generation import (
+    MeshingError,
+    generate_flank,
+    generate_member,
+    normal_thickness,
+    solve_axial_points,
+    standard_gear_cut,
+    surface_state,
+)
+from ltca.geometry.bevel.machine import (
+    FlankCut,
+    MachineSettings,
+    cradle_to_machine,
+    cutter_to_cradle,
+    gear_settings,
+    pinion_settings,
+    work_to_machine,
+)
 from ltca.geometry.bevel.tca import _solve_psi
-from ltca.geometry.bevel.machine import (MachineSettings, FlankCut, gear_settings, pinion_settings,
-                                    work_to_machine, cradle_to_machine, cutter_to_cradle)
 
 
 @pytest.fixture(scope="module")

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from ltca.geometry.bevel.blank import BevelBasicData, design_blank
-from ltca.geometry.bevel.generation import MeshingError, generate_flank
+from ltca.geometry.bevel.generation import generate_flank
 from ltca.geometry.bevel.machine import gear_settings, pinion_settings
 from ltca.geometry.bevel.undercut import undercut_check
 

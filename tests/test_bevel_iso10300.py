@@ -10,8 +10,8 @@ from math import atan, cos, pi, radians, sin, sqrt, tan
 
 import pytest
 
-from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 from ltca.bevel.iso10300 import iso10300_b1, virtual_gears
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 
 Z1, Z2, M, B = 12, 36, 5.08, 25.4
 BETA, ALPHA = radians(35.0), radians(22.5)
@@ -48,7 +48,7 @@ def hand():
     assert m90 == pytest.approx(3.0, rel=1e-12)
     assert ham1 == pytest.approx(5.15224, abs=2e-5) and mmn == pytest.approx(3.61299, abs=2e-5)
     # --- ISO 10300-1 Annex A: virtual cylindrical gears (no offset, 90 deg)
-    dm1, dm2 = 2 * Am * sin(d1), 2 * Am * sin(d2)
+    dm1 = 2 * Am * sin(d1)
     u = Z2 / Z1
     dv1 = dm1 * sqrt(u * u + 1) / u                      # (A.3)
     dv2 = u * u * dv1                                    # (A.4)

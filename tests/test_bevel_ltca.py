@@ -10,13 +10,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ltca.fem.hertz import elliptic_hertz
-from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, tca
 from ltca.bevel.analysis import build_pair
 from ltca.bevel.case import load_bevel_case
 from ltca.bevel.loaded import solve_position
 from ltca.bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
 from ltca.bevel.results import fit_ellipse
+from ltca.fem.hertz import elliptic_hertz
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, tca
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.toml"
 E_MPA, NU = 206000.0, 0.3

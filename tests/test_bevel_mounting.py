@@ -11,12 +11,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ltca.fem.solids.bevel_body import BevelBodySpec, build_bevel_body
 from ltca.bevel.analysis import build_pair
 from ltca.bevel.case import load_bevel_case
 from ltca.bevel.loaded_model import member_flanks
 from ltca.bevel.model import BevelMounting
 from ltca.cli import main
+from ltca.fem.solids.bevel_body import BevelBodySpec, build_bevel_body
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.toml"
 

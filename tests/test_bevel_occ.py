@@ -14,11 +14,11 @@ from conftest import ROOT
 
 @pytest.mark.parametrize("member,anchor", [("pinion", "concave"), ("gear", "convex")])
 def test_tooth_lies_against_the_anchor_normal(member, anchor):
+    from ltca.bevel.analysis import build_pair
+    from ltca.bevel.case import load_bevel_case
     from ltca.fem.solids.bevel_occ import BevelSolidSpec, _shift, polar
     from ltca.geometry.bevel.generation import generate_flank
     from ltca.geometry.bevel.sampling import flank_at
-    from ltca.bevel.analysis import build_pair
-    from ltca.bevel.case import load_bevel_case
     pair = build_pair(load_bevel_case(ROOT / "cases" / "spiral_bevel_cao2008.toml"))
     bl = pair.blank
     mb, cut = bl.member(member), (pair.pinion if member == "pinion" else pair.gear)

@@ -28,9 +28,9 @@ def bevel_run(tmp_path_factory):
 
 @pytest.mark.slow
 def test_bevel_report_is_self_contained_with_iso10300(bevel_run):
-    from ltca.geometry.bevel.blank import design_blank
     from ltca import load_case
     from ltca.bevel.iso10300 import iso10300_b1
+    from ltca.geometry.bevel.blank import design_blank
     out, head = bevel_run
     html = (out / "report.html").read_text(encoding="utf-8")
     srcs = re.findall(r'src="([^"]*)"', html)

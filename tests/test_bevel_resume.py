@@ -35,6 +35,7 @@ def _stored(out: Path) -> int:
 @pytest.mark.slow
 def test_bevel_sigint_then_resume_is_identical(tmp_path):
     import xarray as xr
+
     from ltca.outputs import read_status
     ref, cut = tmp_path / "ref", tmp_path / "cut"
     whole = subprocess.Popen(_cmd(ref), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=ENV)

@@ -6,12 +6,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from ltca.bevel.case import load_bevel_case
 from ltca.geometry.bevel.blank import design_blank
 from ltca.geometry.bevel.design import path_line, synthesize_pinion
 from ltca.geometry.bevel.generation import standard_gear_cut
 from ltca.geometry.bevel.separation import separation_tca
 from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca
-from ltca.bevel.case import load_bevel_case
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.toml"
 

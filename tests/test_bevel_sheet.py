@@ -1,21 +1,21 @@
 """Settings sheets: a flank's settings in the industry's vocabulary, written and read back, and a bevel case
 that gives the sheets instead of the synthesis targets."""
 import dataclasses
-import tomllib
 from pathlib import Path
 
 import numpy as np
 import pytest
+import tomllib
 
+from ltca.bevel.analysis import build_pair
+from ltca.bevel.case import bevel_case_from_data
+from ltca.case import read_toml
+from ltca.errors import CaseError
 from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 from ltca.geometry.bevel.generation import generate_member, standard_gear_cut
 from ltca.geometry.bevel.machine import FlankCut
 from ltca.geometry.bevel.sheet import flank_from_sheet, flank_sheet, member_sheet, sheet_toml
 from ltca.geometry.bevel.tca import tca
-from ltca.bevel.analysis import build_pair
-from ltca.bevel.case import bevel_case_from_data
-from ltca.case import read_toml
-from ltca.errors import CaseError
 
 CASE = Path(__file__).parents[1] / "cases" / "spiral_bevel_cao2008.toml"
 

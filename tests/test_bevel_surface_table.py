@@ -9,11 +9,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from conftest import CASES
 from ltca.geometry.bevel.gaps import MeshGaps
 from ltca.geometry.bevel.surface_table import SurfaceTable
 from ltca.geometry.bevel.tca import RAD_PER_ARCSEC
-
-from conftest import CASES
 
 
 @pytest.fixture(scope="module")
@@ -59,9 +58,9 @@ def test_table_shape_is_checked(pair):
 def test_loaded_cycle_with_and_without_the_table(pair):
     """The loaded TE and the peak pressure of a cycle (175 N m, coarse bodies) with the tabulated flanks equal the
     exact ones within 1e-3 arcsec and 0.01 %: the table is not a model change."""
-    from ltca.bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
-    from ltca.bevel.loaded import solve_position
     import ltca.geometry.bevel.gaps as gaps_module
+    from ltca.bevel.loaded import solve_position
+    from ltca.bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
     bodies = prepare_bodies(pair, "concave", BevelFidelity.named("coarse"))
     phi = np.linspace(-0.5, 0.5, 3) * 2 * np.pi / pair.blank.pinion.z
     out = {}

@@ -10,8 +10,8 @@ import pytest
 from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 from ltca.geometry.bevel.cutter import HeadCutter
 from ltca.geometry.bevel.generation import generate_member, solve_axial_points, standard_gear_cut, surface_state
-from ltca.geometry.bevel.universal import blade_coordinates, universal_state
 from ltca.geometry.bevel.machine import FlankCut, MachineSettings
+from ltca.geometry.bevel.universal import blade_coordinates, universal_state
 
 REF = Path(__file__).parent / "reference"
 

@@ -11,8 +11,16 @@ import pytest
 
 from conftest import CASES
 from ltca.drivetrain.backlash import backlash_curves, plot_backlash, unloaded_from_loaded
-from ltca.drivetrain.budget import (DEG, BallSplineMember, DriveTrain, MeshMember, TorsionMember, compute_budget,
-                                    load_budget_case, run_budget)
+from ltca.drivetrain.budget import (
+    DEG,
+    BallSplineMember,
+    DriveTrain,
+    MeshMember,
+    TorsionMember,
+    compute_budget,
+    load_budget_case,
+    run_budget,
+)
 from ltca.errors import CaseError
 
 CASE = str(CASES / "budget_wang.toml")

@@ -9,7 +9,7 @@ import pytest
 
 from ltca.fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, _face_numbers, write_deck
 from ltca.fem.calculix.run import CCX_INSTALL, CcxNotFound, ccx_path
-from ltca.fem.solids import ContactLine, BodyMesh, facets_near_lines
+from ltca.fem.solids import BodyMesh, ContactLine, facets_near_lines
 
 needs_ccx = pytest.mark.skipif(shutil.which("ccx") is None, reason=f"CalculiX missing: {CCX_INSTALL}")
 
@@ -79,9 +79,9 @@ def test_missing_ccx_names_the_install_command(monkeypatch):
 def test_bad_positions_are_case_errors(tmp_path):
     if shutil.which("ccx") is None:
         pytest.skip(f"CalculiX missing: {CCX_INSTALL}")
-    from ltca.verify.crosscheck import run_calculix_validation
-    from ltca.errors import CaseError
     from conftest import CASES
+    from ltca.errors import CaseError
+    from ltca.verify.crosscheck import run_calculix_validation
     with pytest.raises(CaseError, match="positions"):
         run_calculix_validation(str(CASES / "fzg_c14.toml"), [40.0], str(tmp_path), progress=False)
 
@@ -97,6 +97,7 @@ def test_double_contact_against_calculix(fzg_lm, tmp_path):
     ``ltca.verify.crosscheck.BOUNDS`` (3 %, 0.03); its contact pressure is not resolved at this size and is not compared
     (`ltca validate --reference calculix` does, on the refined ladder)."""
     import dataclasses
+
     from ltca.verify.calculix import ccx_ladder, solve_ccx, solve_ours
     torque = fzg_lm.model.case.torques[0]
     roll = np.radians(-9.0)
@@ -116,8 +117,8 @@ def test_double_contact_against_calculix(fzg_lm, tmp_path):
 
 def test_narrowest_half_width_is_the_hertz_width(fzg_lm):
     """The table's CalculiX resolution (elements per half-width) uses our contact width: ~Hertz b."""
-    from ltca.verify.calculix import narrowest_contact
     from ltca.cylindrical.loaded import solve_position
+    from ltca.verify.calculix import narrowest_contact
     res = solve_position(fzg_lm, 0.0, fzg_lm.model.case.torques[0])
     b = narrowest_contact(res)[1]
     assert abs(b - 0.1995) < res.ds          # tests/reference/hertz.md: 199.5 um at the pitch point

@@ -17,11 +17,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from ltca.drivetrain.chain import evaluate_chain, load_chain_case, pitch_deviation_bound, roll_ratio_error, run_chain
-from ltca.geometry.errors import random_pitch_deviations, worst_case_pitch_deviations
-from ltca.errors import CaseError
-
 from conftest import CASES
+from ltca.drivetrain.chain import evaluate_chain, load_chain_case, pitch_deviation_bound, roll_ratio_error, run_chain
+from ltca.errors import CaseError
+from ltca.geometry.errors import random_pitch_deviations, worst_case_pitch_deviations
 
 CASE = str(CASES / "chain_zftkk250.toml")
 

@@ -9,10 +9,10 @@ tooth-pair deflection F_bt / (b c_gamma) from our own LTCA mesh stiffness within
 from __future__ import annotations
 
 import json
-import tomllib
 
 import numpy as np
 import pytest
+import tomllib
 
 from conftest import CASES
 

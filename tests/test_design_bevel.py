@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import json
 import math
-import tomllib
 
 import numpy as np
 import pytest
+import tomllib
 
 from conftest import CASES
 

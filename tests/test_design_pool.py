@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import threading
 import time
-import tomllib
 
 import numpy as np
 import pytest
 import scipy.sparse as sp
+import tomllib
 
 from conftest import CASES
 

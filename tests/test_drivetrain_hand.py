@@ -27,7 +27,8 @@ DEG = math.pi / 180.0
 
 # ---------------------------------------------------------------- Wang et al. budget
 def test_budget_rows_by_hand_at_10_nm():
-    from ltca.drivetrain.budget import DEG as BDEG, compute_budget, load_budget_case
+    from ltca.drivetrain.budget import DEG as BDEG
+    from ltca.drivetrain.budget import compute_budget, load_budget_case
     T = 10.0                                                     # N m, Table 3's last column
     shaft = T / 289.44                                           # deg            = 0.0345495
     coupling = T / 1.87e4 / DEG                                  # rad -> deg     = 0.0306394

@@ -6,10 +6,10 @@ a generating-ratio error as a profile slope deviation shifting the bearing patte
 from __future__ import annotations
 
 import dataclasses
-import tomllib
 
 import numpy as np
 import pytest
+import tomllib
 
 from conftest import CASES, with_case
 from ltca.case import Modifications, load_case
@@ -56,8 +56,8 @@ def _pitch_error_mods():
 
 
 def test_pitch_error_case_follows_from_the_seed_002_indexing_chain():
-    from ltca.geometry.errors import tooth_positions, worst_case_pitch_deviations
     from ltca.drivetrain.chain import evaluate_chain, load_chain_case, pitch_deviation_bound
+    from ltca.geometry.errors import tooth_positions, worst_case_pitch_deviations
     indexing_z1 = next(c for c in load_chain_case(str(CASES / "chain_zftkk250.toml")) if "index" in c.name.lower()
                        and c.name.lower().rstrip().endswith("z1"))
     bound = pitch_deviation_bound(evaluate_chain(indexing_z1))

@@ -14,9 +14,9 @@ import os
 import subprocess
 import sys
 import time
-import tomllib
 
 import pytest
+import tomllib
 
 from conftest import CASES, ROOT
 from ltca.case import FIDELITIES, parse_case

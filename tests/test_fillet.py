@@ -54,6 +54,7 @@ def test_fzg_fillet_radii_and_read_out_points(fzg_model):
 
 def test_nodal_stress_exact_for_a_linear_field_and_continuous():
     from skfem import MeshTet
+
     from ltca.fem import readout
     from ltca.fem.elastic import lame
     m = MeshTet().refined(2)

@@ -15,10 +15,10 @@ import math
 import os
 import random
 import signal
-import tomllib
 from collections import Counter
 from pathlib import Path
 
+import tomllib
 
 from conftest import CASES
 from ltca.cli import main

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from conftest import REFERENCE
-from ltca.cylindrical.loaded_model import hertz_line
 from ltca.cylindrical.loaded import solve_position
+from ltca.cylindrical.loaded_model import hertz_line
 from ltca.cylindrical.results import mesh_stiffness
 from ltca.cylindrical.run import cycle_rolls
 from ltca.cylindrical.tca import unloaded_tca
@@ -98,6 +98,7 @@ def test_double_contact_pressures_match_local_hertz(fzg_lm, fzg_case, roll_deg):
     the near field must give the local Hertz pressure and width at both, whatever their load share.
     Curvature radii of involutes at the contact: rho1 = sqrt(2 r_b1 s), rho2 = a sin(alpha_w) - rho1."""
     import dataclasses
+
     from ltca.verify.validate import fit_elliptic
     lm = dataclasses.replace(fzg_lm, fid=dataclasses.replace(fzg_lm.fid, cells_per_b=10.0, window=2.5))
     model = lm.model
@@ -127,8 +128,8 @@ def test_loaded_te_does_not_depend_on_the_read_depth(fzg_case, fzg_model, tmp_pa
     (default 1.01) within 0.5 % (a split with the cell half-space subtracted from a patch-loaded FE at one
     depth moves by about 1.2 %)."""
     from ltca.case import FIDELITIES
-    from ltca.cylindrical.loaded_model import Fidelity, prepare
     from ltca.cylindrical.loaded import te_arcsec
+    from ltca.cylindrical.loaded_model import Fidelity, prepare
     te = []
     for d in (0.7, 1.35):
         fid = Fidelity.from_preset(FIDELITIES["default"], fzg_case.module, depth=d)

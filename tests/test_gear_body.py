@@ -76,10 +76,10 @@ def test_webbed_body_volume_counts_each_region_at_its_width(fzg_model):
 
 def test_helical_flank_nodes_lie_on_the_generated_helicoid():
     """Corner nodes of a flank facet, turned back by the lead twist, land on the transverse outline (< 1 um)."""
-    from ltca.fem.solids import build_gear_body
-    from ltca.fem.solids.planar import rot2
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
+    from ltca.fem.solids import build_gear_body
+    from ltca.fem.solids.planar import rot2
     p = build_model(load_case(CASES / "helical_c14.toml")).pinion
     spec = _spec(p, 20.0, 40.0, h_flank=2.0, h_body=6.0)
     mesh = build_gear_body(spec)
@@ -94,9 +94,9 @@ def test_helical_flank_nodes_lie_on_the_generated_helicoid():
 
 
 def test_internal_gear_is_held_at_its_outer_rim():
-    from ltca.fem.solids import build_gear_body
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
+    from ltca.fem.solids import build_gear_body
     model = build_model(load_case(CASES / "internal_spur.toml"))
     p = model.gear
     mesh = build_gear_body(_spec(p, model.r_bore2, model.face_width, h_flank=2.0, h_body=8.0))

@@ -9,8 +9,7 @@ import pytest
 from scipy.integrate import dblquad
 
 from ltca.fem.contact import solve_contact
-from ltca.fem.halfspace import (near_field_correction, subsurface_influence, surface_influence,
-                           surface_influence_matrix)
+from ltca.fem.halfspace import near_field_correction, subsurface_influence, surface_influence, surface_influence_matrix
 
 E, NU = 206000.0, 0.3
 ES = E / (2.0 * (1.0 - NU**2))          # E* of two equal steel bodies

@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from conftest import with_case
-from ltca.geometry.cylindrical import arc_length
 from ltca.case import Modifications
 from ltca.cylindrical.loaded import solve_position
 from ltca.cylindrical.run import analyse, cycle_rolls
+from ltca.geometry.cylindrical import arc_length
 
 
 def _finite(results):

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 from conftest import CASES
-from ltca.geometry.cylindrical import arc_length, flank_point_normal
 from ltca.case import FIDELITIES, load_case
 from ltca.cylindrical.cell_clip import gear_tip_on_pinion
 from ltca.cylindrical.contact_cells import contact_strips
@@ -22,6 +21,7 @@ from ltca.cylindrical.loaded_model import Fidelity, LoadedModel
 from ltca.cylindrical.model import build_model
 from ltca.cylindrical.run import cycle_rolls
 from ltca.cylindrical.tca import flank_gaps
+from ltca.geometry.cylindrical import arc_length, flank_point_normal
 
 
 @pytest.fixture(scope="module")

@@ -4,7 +4,7 @@ import time
 import numpy as np
 import pytest
 
-from ltca.geometry.involute import GearBlank, RackCutter, generate_by_rack, involute, inverse_involute
+from ltca.geometry.involute import GearBlank, RackCutter, generate_by_rack, inverse_involute, involute
 from ltca.geometry.shaper import ShaperCutter, generate_by_shaper
 
 DEG = np.pi / 180

@@ -6,16 +6,15 @@ from __future__ import annotations
 
 import copy
 import json
-import tomllib
 
 import pytest
+import tomllib
 
 from conftest import CASES, ROOT
 from ltca.cli import main
 from ltca.errors import CaseError
 from ltca.keys import KINDS, keys_markdown, kind_json_schema, kind_schema, kinds
-from ltca.validation import (Int, Num, OneOrList, Str, Table, TableList, Tagged, check_table, table_keys,
-                             table_reference)
+from ltca.validation import Int, Num, OneOrList, Str, Table, TableList, Tagged, check_table, table_keys, table_reference
 
 
 def _sections(markdown: str) -> dict[str, set[str]]:

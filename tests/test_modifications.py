@@ -15,10 +15,10 @@ compliance of the session's ``fzg_lm`` serves every variant).
 from __future__ import annotations
 
 import dataclasses
-import tomllib
 
 import numpy as np
 import pytest
+import tomllib
 
 from conftest import CASES, with_case
 from ltca.case import Modifications, load_case

@@ -3,13 +3,12 @@ depth, the stated ranges enforced; satellite profile shifts over their whole all
 or end in exit 2 naming the fields (never a traceback)."""
 from __future__ import annotations
 
+import pytest
 import tomllib
 
-import pytest
-
 from conftest import CASES
-from ltca.errors import CaseError
 from ltca.cli import main
+from ltca.errors import CaseError
 from ltca.planetary.case import parse_planetary_case
 from test_fuzz_cases import dumps
 

@@ -128,8 +128,9 @@ def test_regenerated_reference_matches_stored(tmp_path):
     if shutil.which("ccx") is None:
         pytest.skip("CalculiX (ccx) missing")
     import numpy as np
-    from ltca.verify.bevel_ccx import BevelCcxSettings, solve_bevel_ccx
+
     from ltca.verify.bevel_calculix import bevel_model, mounted
+    from ltca.verify.bevel_ccx import BevelCcxSettings, solve_bevel_ccx
     rec = _rec("spiral_bevel_calculix")
     case, lm, _ = bevel_model(str(ROOT / rec["case"]))
     first = rec["refinement"][0]

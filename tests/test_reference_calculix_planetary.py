@@ -64,6 +64,7 @@ def _share_diff(a: dict, b: dict) -> float:
 def test_internal_full_gear_is_the_ring_held_at_its_outer_diameter():
     """The wheel of the CalculiX model: every internal tooth, the outer cylinder (``rim``) at the housing radius."""
     import numpy as np
+
     from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear
     from ltca.planetary.case import load_planetary_case
     from ltca.planetary.model import build_satellite_model
@@ -120,6 +121,7 @@ def test_ours_resolves_the_wheel_tip_corner_of_pair_minus_8():
     that gap kink; the uncapped cells of half_width / 3 = 0.83 mm (b = 2.50 mm, nearly conformal) miss it and
     about halve the pair's share. Both lattices are checked, 5 % on the share and 1 % on the TE."""
     import dataclasses
+
     from ltca.verify.planetary_whole import solve_ours
     sm, lm = _model()
     o = _ours(-1.8)
@@ -134,6 +136,7 @@ def test_calculix_internal_pairs_split_the_wheel_band_at_its_tip_corner(tmp_path
     zone (tip land and the flank's first rows, radius < r_tip + max(CORNER, 2 h)) a slave against the satellite's
     flank and fillet, the rest the master of the satellite's flank and tip; the two zones share no facet."""
     import numpy as np
+
     import ltca.verify.whole_gear as wg
     from ltca.verify.planetary_whole import planetary_settings
 

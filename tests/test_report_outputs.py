@@ -135,6 +135,7 @@ def test_pattern_not_striped_at_defaults_but_striped_undersampled(flagship, fzg_
     """Striping index (ltca.cylindrical.pattern): the flagship defaults are smooth (index well below the limit); 8
     positions per cycle leave columns that no contact line crossed and fail the same criterion."""
     import xarray as xr
+
     from ltca.cylindrical.pattern import STRIPING_LIMIT, striping_index
     from ltca.cylindrical.results import position_dataset
     from ltca.cylindrical.run import analyse, cycle_rolls

@@ -155,6 +155,7 @@ SUN_PLANET_RUN = HERE / "sun_planet_211_coarse"
 
 def _check_write_back(run_dir: Path, tmp_path: Path) -> None:
     import xarray as xr
+
     from ltca.rexs.results import read_results, results_from_dataset, write_results
     for src in (PLANET, PLANET.with_suffix(".rexsj")):
         rx = rexs.read(src)
@@ -411,6 +412,7 @@ def test_torque_record_finds_an_imported_torque():
     """An imported torque has many digits (530.516476972984 N m per planet mesh); summary.json rounds it to 6
     decimals and the torques of a run are not sorted: its record is still found."""
     import xarray as xr
+
     from ltca.cylindrical.sweep import torque_record
     tq = [530.516476972984, 100.25]
     ds = xr.Dataset({"te_loaded_ptp_um": ("torque", [8.45, 1.74]),
@@ -423,7 +425,6 @@ def test_torque_record_finds_an_imported_torque():
 
 def test_a_stage_runs_through_the_one_api():
     """``ltca.rexs.read(path).stage(id)`` is a Case: ``with_values`` edits it and ``ltca.run`` takes it."""
-    import ltca
     case = rexs.read(FVA2).stage(19)
     assert case.kind == "cylindrical" and case.record == rexs.read(FVA2).stage_record(19)
     assert case.with_values({"analysis.fidelity": "coarse"}).record.fidelity == "coarse"

@@ -4,10 +4,10 @@ pitch angles and cone distance of ISO 23509, refused where the case cannot hold 
 from __future__ import annotations
 
 import math
-import tomllib
 from pathlib import Path
 
 import pytest
+import tomllib
 
 import ltca
 from ltca import rexs

@@ -99,8 +99,8 @@ def _fe_at_hpstc(lm, iso, member, degrees):
 
 @pytest.mark.parametrize("member", ["pinion", "gear"])
 def test_iso_closed_form_equals_the_library_root_section(fzg_case, member):
-    from ltca.geometry.satellite.rating import root_section
     from ltca.cylindrical.model import build_model
+    from ltca.geometry.satellite.rating import root_section
     iso = _iso_method_b(fzg_case, member)
     model = build_model(fzg_case)
     profile = model.pinion if member == "pinion" else model.gear

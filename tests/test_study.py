@@ -147,7 +147,9 @@ def _points(out: Path) -> list[Path]:
 def test_a_killed_worker_loses_nothing(tmp_path):
     """Kill a worker process while it solves a point: the study completes, every point once."""
     import json
+
     from distributed import Client, LocalCluster
+
     from ltca.study import Study, run_study
     study = Study.from_dict(study_dict({"assembly.lead_misalignment_um": [0.0, 5.0, 10.0]},
                                        torques=(50.0, 100.0, 150.0, 200.0)))
@@ -179,6 +181,7 @@ def test_a_killed_worker_loses_nothing(tmp_path):
 def test_a_killed_client_reruns_only_what_is_missing(tmp_path):
     """``ltca study`` killed (with its LocalCluster) after some points; the rerun computes only the rest."""
     import json
+
     from ltca.study import run_study
     text = ('[set]\n"analysis.fidelity" = "coarse"\n"analysis.positions" = 4\n'
             '[grid]\n"load.torque_nm" = [50.0, 100.0, 150.0, 200.0]\n"assembly.lead_misalignment_um" = [0.0, 10.0]\n')

@@ -96,6 +96,7 @@ def test_bad_bevel_torque_exits_2(tmp_path, capsys):
 def bevel_sweep(tmp_path_factory):
     """E and P of +-0.05 mm at two torques (4 variants x 2 torques), LocalCluster of 2 workers."""
     import time
+
     from ltca.study import Study, run_study
     out = tmp_path_factory.mktemp("bevel_sweep")
     study = Study.from_dict(bevel_study({"assembly.E_mm": [-0.05, 0.05], "assembly.P_mm": [-0.05, 0.05]}))

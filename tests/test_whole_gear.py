@@ -76,11 +76,10 @@ def test_full_gear_is_independent_of_our_body():
 def test_helical_full_gear_is_lofted_on_the_helicoid():
     """Helical C14's pinion (beta 20 deg, b 40 mm): every tooth labelled, the flank vertices of tooth 0 within
     1 um of the transverse outline turned by tan(beta) / r z (measured 0.3 um), over the whole face."""
-    from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear
-    from ltca.fem.solids.planar import rot2
-    from ltca.fem.solids.planar import polyline_distance
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
+    from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear
+    from ltca.fem.solids.planar import polyline_distance, rot2
     from ltca.verify.whole_gear import twist
     model = build_model(load_case(CASES / "helical_c14.toml"))
     p, b = model.pinion, model.face_width
@@ -115,9 +114,9 @@ def test_read_nodal_stress_takes_the_last_block_in_voigt_order(tmp_path):
 def test_fillet_stress_reads_the_tension_fillets_as_ours(tmp_path):
     """0.05 mm inside the named fillets, |z| <= 0.45 b, largest principal stress, and where; the loaded
     teeth's tension-side fillets are meshed at h_fillet, the other side left."""
-    from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
+    from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear
     from ltca.verify.whole_root import Member, fillet_points, fillet_stress, largest_principal
     model = build_model(load_case(CASES / "fzg_c14.toml"))
     p, b = model.pinion, model.face_width
@@ -152,8 +151,9 @@ def test_fillet_stress_reads_the_tension_fillets_as_ours(tmp_path):
 def test_whole_gear_calculix_pitch_point_bore20(tmp_path):
     """FZG C14, pinion bore 20 mm, pitch point: ours within ``ltca.verify.whole_check.BOUNDS_WHOLE`` of whole-gear
     CalculiX."""
-    from ltca.verify.whole_check import run_whole_validation
     import json
+
+    from ltca.verify.whole_check import run_whole_validation
     rc = run_whole_validation(str(CASES / "crosscheck" / "fzg_c14_bore20.toml"), [0.0], str(tmp_path),
                               progress=False)
     row = json.loads((tmp_path / "whole_gear.json").read_text())["rows"][0]
@@ -174,8 +174,8 @@ def test_coarse_body_and_unconverged_readouts():
     names a read-out its ladder moves by more than 5 %, with the numbers."""
     from types import SimpleNamespace
 
-    from tools.calculix_refs.freeze_whole import unconverged
     from ltca.verify.whole_gear import whole_settings
+    from tools.calculix_refs.freeze_whole import unconverged
     d, c = whole_settings(0.118, 4.23, 150.0, threads=1), whole_settings(0.118, 4.23, 150.0, threads=1, body="coarse")
     assert (c.h_contact, c.half_band, c.penalty, c.halo) == (d.h_contact, d.half_band, d.penalty, d.halo)
     assert c.h_flank > d.h_flank and c.h_tooth > d.h_tooth and c.h_body > d.h_body and c.h_fillet > d.h_fillet

@@ -48,8 +48,8 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     extends its ladder (the frozen run before it); the first position's ladder, the other positions and the original
     command stay."""
     import ltca.fem.calculix.run as ccx_run
-    from tools.calculix_refs import merge_whole as whole_merge
     from ltca.verify.whole_gear import WholeResult
+    from tools.calculix_refs import merge_whole as whole_merge
 
     def fake(lm, roll, torque, st, workdir, say=print):
         info = {"nodes": 2, "elements": 1, "nodes_pinion": 1, "nodes_gear": 1, "h_contact_mm": st.h_contact,

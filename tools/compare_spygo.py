@@ -48,8 +48,8 @@ from scipy.optimize import root
 
 from ltca.geometry.bevel.cutter import HeadCutter
 from ltca.geometry.bevel.generation import solve_axial_points, surface_state
-from ltca.geometry.bevel.universal import blade_coordinates
 from ltca.geometry.bevel.machine import FlankCut, MachineSettings
+from ltca.geometry.bevel.universal import blade_coordinates
 
 NOTEBOOK = dict(
     system=dict(HAND="Left", taper="Standard", hypoidOffset=0, gearGenType="generated"),

@@ -37,8 +37,8 @@ from ltca.geometry.bevel.sampling import flank_at
 from ltca.geometry.flank import Flank
 
 from .gmsh_mesh import extract_mesh, fresh_model
-from .session import gmsh_session
 from .mesh_record import BodyMesh
+from .session import gmsh_session
 
 __all__ = ["BevelSolidSpec", "build_bevel_solid", "polar", "flank_t"]
 

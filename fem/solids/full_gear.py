@@ -29,11 +29,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .planar import rot2
 from .gmsh_mesh import background_size, extract_mesh
-from .planar import polyline_distance
-from .session import gmsh_session
 from .mesh_record import BodyMesh
+from .planar import polyline_distance, rot2
+from .session import gmsh_session
 
 __all__ = ["FullGearSpec", "build_full_gear"]
 

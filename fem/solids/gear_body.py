@@ -32,11 +32,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .cache import load_cached, store_cached
-from .planar import rot2
 from .gmsh_mesh import background_size, fresh_model, mesh_labelled
-from .planar import Polylines
-from .session import gmsh_session
 from .mesh_record import BodyMesh, outline_hash
+from .planar import Polylines, rot2
+from .session import gmsh_session
 
 __all__ = ["GearBodySpec", "build_gear_body"]
 

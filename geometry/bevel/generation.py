@@ -24,7 +24,6 @@ plane, from just above the root cone (into the fillet) up to the face cone.
 """
 from __future__ import annotations
 
-
 import numpy as np
 
 from ..flank import Flank, surface_curvatures

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .surface_state import SurfaceState, _cross, _ez_cross, _rotz, _vectors, work_state
 from .machine import FlankCut, roll, tilt_rotation
+from .surface_state import SurfaceState, _cross, _ez_cross, _rotz, _vectors, work_state
 
 __all__ = ["universal_state", "blade_coordinates"]
 

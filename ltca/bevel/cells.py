@@ -21,7 +21,6 @@ from ltca.fem.hertz import elliptic_hertz
 
 from .model import BevelLoadedModel
 
-
 __all__ = ["PairMinimum", "PairCells", "pair_minimum", "pair_minima", "pair_cells", "cells_of", "window",
            "pair_hertz"]
 

@@ -9,16 +9,12 @@ import numpy as np
 
 from ltca.geometry.bevel.blank import design_blank
 from ltca.geometry.bevel.design import cycle_metrics, synthesize_pinion
-from ltca.geometry.bevel.generation import standard_gear_cut
+from ltca.geometry.bevel.generation import MeshingError, generate_member, standard_gear_cut, surface_state
 from ltca.geometry.bevel.machine import MemberCut
-from ltca.geometry.bevel.generation import generate_member, surface_state
 from ltca.geometry.bevel.separation import separation_tca
 from ltca.geometry.bevel.sheet import member_sheet, sheet_toml
-from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, tca, to_pitch_coords
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca, to_pitch_coords
 from ltca.geometry.bevel.undercut import undercut_check
-
-from ltca.geometry.bevel.generation import MeshingError
-from ltca.geometry.bevel.tca import ContactError
 
 from ..validation import DesignError
 from .case import load_bevel_case

@@ -16,9 +16,9 @@ from ..errors import CaseError
 from .edges import edge_summary
 from .loaded import PositionResult
 from .loaded_model import Fidelity, LoadedModel, prepare
+from .loop import analyse, cycle_rolls
 from .model import build_model
 from .results import position_dataset, summary
-from .loop import analyse, cycle_rolls
 
 __all__ = ["CylindricalPlan", "CylindricalRun", "plan", "execute"]
 

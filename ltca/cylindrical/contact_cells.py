@@ -18,8 +18,7 @@ import numpy as np
 from ltca.geometry.cylindrical import arc_length
 
 from ..position import cell_compliance
-from .cell_clip import (MIN_FRACTION, bounding_edges, clip_to_gear_flank, clip_to_pinion_flank,
-                        gear_tip_on_pinion)
+from .cell_clip import MIN_FRACTION, bounding_edges, clip_to_gear_flank, clip_to_pinion_flank, gear_tip_on_pinion
 from .flank_lattice import line_lattice
 from .loaded_model import LoadedModel
 from .tca import flank_gaps

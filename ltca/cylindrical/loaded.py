@@ -14,8 +14,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ltca.fem.compliance import BodyCompliance
-
 from ..errors import ConvergenceError
 from ..position import root_stresses, solve_rounds
 from .contact_cells import contact_strips, contact_system

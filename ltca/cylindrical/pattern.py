@@ -24,7 +24,6 @@ from .. import figures as plt
 from .derived import roll_to_diameter
 from .report import plot_data
 
-
 __all__ = ["STRIPING_LIMIT", "column_profile", "striping_index", "plot_pattern_diameter"]
 
 #: largest dip of a profile column below its neighbours that still counts as a smooth pattern

@@ -21,8 +21,8 @@ def tca_summary(case, positions: int | None = None, file: str | None = None) -> 
 
     Writes and prints nothing; ``summary`` has the contact ratios, the working pressure angle, the unloaded TE
     peak-to-peak (arcsec) and the contact path per position."""
-    from .warnings import check_contact, contact_ratio_transverse, design_warnings
     from ..sizing import MAX_POSITIONS
+    from .warnings import check_contact, contact_ratio_transverse, design_warnings
     model = build_model(case)
     check_contact(model, str(file or case.name))
     warnings = design_warnings(model)

@@ -11,8 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ltca.geometry.cylindrical import arc_length, radius_of_arc
-from ltca.geometry.cylindrical import flank_point_normal
+from ltca.geometry.cylindrical import arc_length, flank_point_normal, radius_of_arc
 from ltca.geometry.modification import modification_depth
 from ltca.geometry.tip_edge import tip_edge_depth
 

@@ -75,7 +75,7 @@ def design_warnings(model) -> list[str]:
     r_start1 = float(np.hypot(p1.r_base, start1)) if start1 >= 0 else p1.r_base
     r_form1 = max(p1.r_form_left, p1.r_form_right)
     if start1 < 0:
-        out.append(f"interference: the gear tip reaches below the pinion base circle (line of action passes T1); "
+        out.append("interference: the gear tip reaches below the pinion base circle (line of action passes T1); "
                    "set by gear.tip_diameter_mm, assembly.centre_distance_mm, pinion.profile_shift")
     elif r_start1 < r_form1 - 1e-6:
         rho_form = np.sqrt(max(r_form1 ** 2 - p1.r_base ** 2, 0.0))

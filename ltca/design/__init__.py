@@ -1,6 +1,8 @@
-"""Design optimisation driven by the LTCA (``ltca optimise``): the ``[design]`` table (:mod:`.schema`), the
-problem and its backends (:mod:`.problem`, :mod:`.cylindrical`), the search (:mod:`.driver`), the history
-(:mod:`.history`), the result files (:mod:`.report`) and figures (:mod:`.plots`)."""
+"""Design optimisation driven by the LTCA (``ltca optimise``).
+
+The ``[design]`` table (:mod:`.schema`), the problem and its backends (:mod:`.problem`, :mod:`.cylindrical`), the search (:mod:`.driver`), the history
+(:mod:`.history`), the result files (:mod:`.report`) and figures (:mod:`.plots`).
+"""
 from __future__ import annotations
 
 from .driver import OptimiseResult, optimise

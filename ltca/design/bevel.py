@@ -293,9 +293,10 @@ class BevelBackend:
 
     def full_run(self, case_path: Path, out: Path) -> dict:
         """``ltca run`` of a design's case file (synthesis and compliance afresh): TE peak-to-peak per torque."""
-        from ..driver import run_to_dir
         import contextlib
         import io
+
+        from ..driver import run_to_dir
         with contextlib.redirect_stdout(io.StringIO()):
             s = run_to_dir(str(case_path), str(out), positions=self.positions, fidelity=self.fidelity, progress=False)
         return {f"{v['torque_nm']:g}": v["te_loaded_ptp_arcsec"] for v in s["torques"]}

@@ -1,5 +1,6 @@
-"""``ltca optimise CASE --out DIR``: the search over the ``[design]`` variables, driven by a derivative-free
-optimiser of scipy on the variables scaled to [0, 1], each candidate a full analysis by the case's backend.
+"""``ltca optimise CASE --out DIR``: the search over the ``[design]`` variables.
+
+A derivative-free optimiser of scipy drives it on the variables scaled to [0, 1], each candidate a full analysis by the case's backend.
 
 Order of work: the ``[design]`` table validated (exit 2 naming the field), the folder locked
 (:class:`ltca.outputs.RunDir`), a pressure limit below what any design can reach refused, the bodies' compliance
@@ -10,9 +11,9 @@ finishes; ``resume`` replays the finished ones (:mod:`ltca.design.history`).
 """
 from __future__ import annotations
 
+import itertools
 import os
 import sys
-import itertools
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -38,6 +39,7 @@ class _Budget(Exception):
 @dataclass
 class Search:
     """The outcome of :func:`search`: the best candidate, every candidate the search asked for, and scipy's word."""
+
     best: Evaluation
     evaluations: list[Evaluation]
     message: str
@@ -64,8 +66,9 @@ def best_of(evaluations: list[Evaluation]) -> Evaluation:
 
 
 def search(spec: DesignSpec, start: dict, evaluate, scale: float) -> Search:
-    """Minimise the penalised objective from ``start`` with the table's optimiser, at most ``max_evaluations``
-    calls of ``evaluate(values) -> Evaluation`` (the start included).
+    """Minimise the penalised objective from ``start`` with the table's optimiser.
+
+    At most ``max_evaluations`` calls of ``evaluate(values) -> Evaluation`` (the start included).
 
     Parameters
     ----------
@@ -120,6 +123,7 @@ def search(spec: DesignSpec, start: dict, evaluate, scale: float) -> Search:
 @dataclass
 class OptimiseResult:
     """What ``ltca optimise`` found and where it wrote it (the keys of ``design.json``)."""
+
     summary: dict
     out: Path
 
@@ -145,12 +149,14 @@ def _n_torques(data: dict, file: str) -> int:
 
 def optimise(case_path: str, out: str, resume: bool = False, progress: bool = True, full_runs: bool = True,
              workers: int | None = None) -> OptimiseResult:
-    """Optimise the ``[design]`` variables of a case; see the module docstring. Returns the summary written to
-    ``DIR/design.json``.
+    """Optimise the ``[design]`` variables of a case (see the module docstring).
+
+    Returns the summary written to ``DIR/design.json``.
 
     ``workers`` processes (default: the cores, at most 2 when not given) compute the objective map and the Harris
     curves in parallel; the search itself is sequential (each candidate depends on the previous ones), but a
-    bevel candidate's cycles (torques, tolerance-box corners) run side by side in them."""
+    bevel candidate's cycles (torques, tolerance-box corners) run side by side in them.
+    """
     from ..case import read_toml
     from ..outputs import RunDir, signature_of
     t_start = time.perf_counter()
@@ -251,8 +257,10 @@ def _curve(values: dict, torques) -> list[float]:
 
 
 def _objective_map(spec: DesignSpec, at: dict, hist: History, evaluate, pool) -> dict | None:
-    """The objective over the two map variables (``map_points`` each), the others at ``at``; the points not on
-    file computed by ``pool`` (in parallel) and recorded as each finishes."""
+    """The objective over the two map variables (``map_points`` each), the others at ``at``.
+
+    The points not on file computed by ``pool`` (in parallel) and recorded as each finishes.
+    """
     if spec.map_variables is None or spec.map_points < 2:
         return None
     a, b = (next(v for v in spec.variables if v.name == n) for n in spec.map_variables)

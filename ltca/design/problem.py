@@ -29,7 +29,6 @@ The driver (:mod:`ltca.design.driver`) picks the backend of a case and only talk
 from __future__ import annotations
 
 import math
-
 from dataclasses import dataclass
 
 from .schema import DesignSpec

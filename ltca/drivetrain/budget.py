@@ -11,8 +11,17 @@ import os
 import numpy as np
 
 from ltca.drivetrain.budget_case import load_backlash_table, load_budget_case
-from ltca.drivetrain.budget_model import (DEG, BallSplineMember, BudgetResult, DriveTrain, MeshMember, Member,
-                                          ShaftMember, TorsionMember, compute_budget)
+from ltca.drivetrain.budget_model import (
+    DEG,
+    BallSplineMember,
+    BudgetResult,
+    DriveTrain,
+    Member,
+    MeshMember,
+    ShaftMember,
+    TorsionMember,
+    compute_budget,
+)
 
 __all__ = ["TorsionMember", "ShaftMember", "MeshMember", "BallSplineMember", "Member",
            "DriveTrain", "BudgetResult", "compute_budget", "load_budget_case", "plot_budget",
@@ -52,11 +61,11 @@ def backlash_from_pair(spec: dict, result: BudgetResult) -> list:
     The TE is that of the gear; the budget's deflections are taken as referred to the same shaft."""
     import dataclasses
 
-    from .backlash import backlash_curves
     from ..case import load_case
     from ..cylindrical.model import build_model
     from ..cylindrical.run import cycle_rolls
     from ..cylindrical.tca import ARCSEC_PER_RAD, double_flank_tca
+    from .backlash import backlash_curves
     case = load_case(spec["pair_case"])
     case = dataclasses.replace(
         case, pinion=dataclasses.replace(case.pinion, thickness_allowance=spec["allowance"][0]),

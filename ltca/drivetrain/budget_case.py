@@ -10,10 +10,17 @@ import os
 
 import numpy as np
 
-from ltca.drivetrain.budget_model import (DEG, BallSplineMember, DriveTrain, MeshMember, Member, ShaftMember,
-                                          TorsionMember)
+from ltca.drivetrain.budget_model import (
+    DEG,
+    BallSplineMember,
+    DriveTrain,
+    Member,
+    MeshMember,
+    ShaftMember,
+    TorsionMember,
+)
 from ltca.errors import CaseError
-from ltca.validation import (Int, List, Num, OneOrList, Str, Table, TableList, Tagged, check_kind, check_table)
+from ltca.validation import Int, List, Num, OneOrList, Str, Table, TableList, Tagged, check_kind, check_table
 
 __all__ = ["load_budget_case", "budget_from_data", "load_backlash_table", "CASE"]
 

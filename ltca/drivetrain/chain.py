@@ -11,8 +11,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ltca.drivetrain.chain_case import load_chain_case
-from ltca.drivetrain.chain_model import (Chain, ChainElement, ChainEvaluation, RollRatioError, evaluate_chain,
-                                         pitch_deviation_bound, roll_ratio_error)
+from ltca.drivetrain.chain_model import (
+    Chain,
+    ChainElement,
+    ChainEvaluation,
+    RollRatioError,
+    evaluate_chain,
+    pitch_deviation_bound,
+    roll_ratio_error,
+)
 
 __all__ = ["ChainElement", "Chain", "ChainEvaluation", "evaluate_chain", "ChainResult",
            "load_chain_case", "run_chain", "pitch_deviation_bound", "RollRatioError", "roll_ratio_error"]

@@ -30,12 +30,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ltca.fem.compliance import ComplianceSpec, body_compliance
+from ltca.geometry.cylindrical import arc_length
 
 from ..cylindrical.loaded import solve_position
 from ..cylindrical.loaded_model import Fidelity, LoadedModel, hertz_line
 from ..cylindrical.tca import flank_gaps
-from ltca.geometry.cylindrical import arc_length
-
 from .model import SatelliteModel
 
 __all__ = ["C_PRIME", "positions", "teeth_in_mesh", "prepare_satellite", "solve_cycle"]

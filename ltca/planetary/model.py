@@ -21,7 +21,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-
 from ltca.geometry.modification import FlankModification
 from ltca.geometry.pair import CylindricalPair
 from ltca.geometry.profile import ToothProfile

@@ -7,11 +7,11 @@ The schema file is ``data/rexs_schema_2.0.0.xml.gz`` (FVA, Apache License 2.0; s
 from __future__ import annotations
 
 import gzip
+import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 from typing import Any, Iterable
-import xml.etree.ElementTree as ET
 
 from .model import Attribute, Component, RexsModel
 from .units import normalise_unit

@@ -1,5 +1,7 @@
-"""Running a study on Dask: a ``LocalCluster`` sized to the machine by default, or an existing cluster by its
-scheduler address; the same code either way.
+"""Running a study on Dask.
+
+A ``LocalCluster`` sized to the machine by default, or an existing cluster by its scheduler address; the same
+code either way.
 
 The client submits one plan task per unfinished variant; as each plan returns, the variant's geometry key
 either finds a compliance already under way (a future), kept on disk from an earlier run (scattered to the
@@ -44,8 +46,10 @@ def local_cluster_size() -> int:
 
 
 def check_scheduler_address(address: str) -> str:
-    """``--scheduler``: a Dask scheduler address such as ``tcp://127.0.0.1:8786`` (parsed by Dask itself);
-    :class:`~ltca.errors.CaseError` (exit status 2) otherwise."""
+    """Check ``--scheduler``: a Dask scheduler address such as ``tcp://127.0.0.1:8786`` (parsed by Dask).
+
+    Raises :class:`~ltca.errors.CaseError` (exit status 2) otherwise.
+    """
     from distributed.comm.addressing import parse_address, parse_host_port
     allowed = "the address of a running Dask scheduler, e.g. tcp://127.0.0.1:8786"
     if not isinstance(address, str) or not 0 < len(address) <= 500 or any(c.isspace() for c in address):
@@ -63,8 +67,10 @@ def check_scheduler_address(address: str) -> str:
 
 @contextmanager
 def cluster_client(scheduler: str | None = None, workers: int | None = None):
-    """A ``distributed.Client``: of the cluster at ``scheduler``, or of a new LocalCluster of ``workers``
-    single-threaded worker processes (default :func:`local_cluster_size`), closed on exit."""
+    """A ``distributed.Client`` of the cluster at ``scheduler``, or of a new LocalCluster.
+
+    The LocalCluster has ``workers`` single-threaded worker processes (default :func:`local_cluster_size`), closed on exit.
+    """
     from distributed import Client, LocalCluster
     if scheduler:
         check_scheduler_address(scheduler)

@@ -25,15 +25,15 @@ from pathlib import Path
 
 import numpy as np
 
-from ltca.geometry.cylindrical import arc_length
 from ltca.fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
 from ltca.fem.calculix.run import read_results, run_ccx
-from ltca.fem.solids import ContactLine, build_refined_body, facets_near_lines
 from ltca.fem.compliance import body_spec
+from ltca.fem.solids import ContactLine, build_refined_body, facets_near_lines
+from ltca.geometry.cylindrical import arc_length
 from ltca.geometry.pair import rotation_z
 
-from ..cylindrical.loaded_model import LoadedModel
 from ..cylindrical.loaded import solve_position
+from ..cylindrical.loaded_model import LoadedModel
 from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact, flank_gaps
 
 __all__ = ["CcxSettings", "Focus", "penalty_slope", "PositionComparison", "ccx_ladder", "contact_lines", "solve_ccx",

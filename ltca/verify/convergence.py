@@ -14,11 +14,11 @@ from pathlib import Path
 import numpy as np
 
 from ..case import FIDELITIES, load_case
-from ..cylindrical.loaded_model import Fidelity, prepare
 from ..cylindrical.loaded import te_arcsec
+from ..cylindrical.loaded_model import Fidelity, prepare
 from ..cylindrical.model import build_model
-from ..outputs import write_json
 from ..cylindrical.run import analyse, cycle_rolls
+from ..outputs import write_json
 
 __all__ = ["LADDER", "run_convergence"]
 

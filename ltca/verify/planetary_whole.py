@@ -103,7 +103,8 @@ def prepare_ours(case, positions_deg, torque: float, fidelity: str, cache=None, 
     :func:`ltca.planetary.loaded.prepare_satellite`'s."""
     from ..case import FIDELITIES
     from ..cylindrical.loaded_model import Fidelity
-    from ..planetary.loaded import positions as cycle_positions, prepare_satellite
+    from ..planetary.loaded import positions as cycle_positions
+    from ..planetary.loaded import prepare_satellite
     from ..planetary.model import build_satellite_model
     sm = build_satellite_model(case)
     phis = np.unique(np.concatenate([cycle_positions(sm, case.positions), np.radians(positions_deg)]))
@@ -148,6 +149,7 @@ def run_planetary_whole_validation(case_path: str, positions: list[float], torqu
 
     Raises ``CaseError`` on bad arguments (before looking for ``ccx``) and ``CcxNotFound`` when it is missing."""
     from ltca.fem.calculix.run import ccx_path
+
     from ..planetary.case import load_planetary_case
     case = load_planetary_case(case_path)
     band_um = 600.0 if band_um is None else band_um

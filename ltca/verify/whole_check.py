@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from .calculix import solve_ours
-from .whole_gear import BODIES, stiffness, solve_whole, whole_settings
+from .whole_gear import BODIES, solve_whole, stiffness, whole_settings
 
 __all__ = ["BOUNDS_WHOLE", "run_whole_validation", "ours_figures", "prepare_ours", "check_arguments",
            "compare_positions", "table_lines", "root_stress"]
@@ -164,6 +164,7 @@ def run_whole_validation(case_path: str, positions: list[float], out: str, band_
     Prints the table and writes ``whole_gear.csv`` and ``whole_gear.json`` to ``out``. Raises ``CaseError``
     on bad arguments (before looking for ``ccx``) and ``CcxNotFound`` when ``ccx`` is missing."""
     from ltca.fem.calculix.run import ccx_path
+
     from ..case import load_case
     case = load_case(case_path)
     rolls = list(positions or [0.0, -9.0])

@@ -18,8 +18,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ltca.verify.bevel_calculix import (BOUNDS_BEVEL, bevel_model, ccx_folder, check_arguments, compare_positions,
-                                        middle_torque, mounted, shares, table_lines)
+from ltca.verify.bevel_calculix import (
+    BOUNDS_BEVEL,
+    bevel_model,
+    ccx_folder,
+    check_arguments,
+    compare_positions,
+    middle_torque,
+    mounted,
+    shares,
+    table_lines,
+)
 from ltca.verify.bevel_ccx import bevel_ladder, solve_bevel_ccx
 
 from .convergence import richardson
@@ -37,8 +46,8 @@ def run_bevel_freeze(case_path: str, fractions=(0.0, 0.4), out: str = "out/valid
                      progress: bool = True, torque: float | None = None, threads: int = 2) -> int:
     """The bevel comparison with the ladder of ``refine`` rungs at the first position and (``freeze`` a path) the
     frozen reference; exit status 0 when inside the bounds."""
-    from ltca.fem.calculix.run import ccx_path
     from ltca.errors import CaseError
+    from ltca.fem.calculix.run import ccx_path
     check_arguments(fractions, level, h0, threads)
     if not level <= refine <= 4:
         raise CaseError("--refine", refine, f"an integer from --level ({level}) to 4")

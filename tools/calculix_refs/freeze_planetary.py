@@ -17,8 +17,18 @@ import time
 from pathlib import Path
 
 from ltca.verify.calculix import penalty_slope
-from ltca.verify.planetary_whole import (BOUNDS_PLANETARY, ccx_folder, ccx_record, check_arguments, compare_positions,
-                                         compare_row, planetary_settings, prepare_ours, shares, table_lines)
+from ltca.verify.planetary_whole import (
+    BOUNDS_PLANETARY,
+    ccx_folder,
+    ccx_record,
+    check_arguments,
+    compare_positions,
+    compare_row,
+    planetary_settings,
+    prepare_ours,
+    shares,
+    table_lines,
+)
 from ltca.verify.whole_gear import solve_whole
 
 from .provenance import ccx_version, command_line, run
@@ -37,8 +47,8 @@ def run_planetary_freeze(case_path: str, positions: list[float], torque_nm: floa
                          command: str | None = None, progress: bool = True, cache: str | None = None) -> int:
     """The planetary comparison at ``positions`` (deg), the ladder of ``refine`` rungs at the first one, and
     (``freeze`` a path) the frozen reference; returns 0 when every position is within the bounds, else 1."""
-    from ltca.fem.calculix.run import ccx_path
     from ltca.errors import CaseError
+    from ltca.fem.calculix.run import ccx_path
     from ltca.planetary.case import load_planetary_case
     case = load_planetary_case(case_path)
     band_um = 600.0 if band_um is None else band_um

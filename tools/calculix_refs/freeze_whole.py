@@ -20,8 +20,15 @@ from pathlib import Path
 import numpy as np
 
 from ltca.verify.calculix import penalty_slope
-from ltca.verify.whole_check import (check_arguments, compare_positions, ccx_folder, prepare_ours, root_stress,
-                                     table_lines, write_rows)
+from ltca.verify.whole_check import (
+    ccx_folder,
+    check_arguments,
+    compare_positions,
+    prepare_ours,
+    root_stress,
+    table_lines,
+    write_rows,
+)
 from ltca.verify.whole_gear import solve_whole, whole_settings
 
 from .provenance import ccx_version, command_line, finite, run
@@ -121,9 +128,9 @@ def run_whole_freeze(case_path: str, positions: list[float], out: str, freeze: s
     (``freeze`` a path) the frozen reference; returns 0 when every position is within the bounds, else 1.
 
     Raises ``CaseError`` on bad arguments (before looking for ``ccx``) and ``CcxNotFound`` when it is missing."""
-    from ltca.fem.calculix.run import ccx_path
     from ltca.case import load_case
     from ltca.errors import CaseError
+    from ltca.fem.calculix.run import ccx_path
     case = load_case(case_path)
     rolls = list(positions or [0.0, -9.0])
     check_arguments(case, case_path, rolls, band_um, fidelity, threads, body)

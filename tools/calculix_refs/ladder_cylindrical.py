@@ -27,8 +27,15 @@ from pathlib import Path
 import numpy as np
 
 from ltca.cylindrical.loaded_model import LoadedModel
-from ltca.verify.calculix import (Focus, PositionComparison, ccx_ladder, narrowest_contact, penalty_slope, solve_ccx,
-                                  solve_ours)
+from ltca.verify.calculix import (
+    Focus,
+    PositionComparison,
+    ccx_ladder,
+    narrowest_contact,
+    penalty_slope,
+    solve_ccx,
+    solve_ours,
+)
 from ltca.verify.crosscheck import BOUNDS, BOUNDS_HELICAL_TE, COARSE_BODY, default_rolls_deg, plot_rows
 
 from .convergence import richardson
@@ -89,12 +96,12 @@ def run_calculix_ladders(case_path: str, positions: list[float] | None, out: str
     ``calculix.png`` to ``out`` and returns 0 when all positions are within :data:`BOUNDS`, 1
     otherwise. Raises ``CaseError`` on a bad case or
     position list and ``ltca.fem.calculix.run.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
-    from ltca.fem.calculix.run import ccx_path
     from ltca.case import FIDELITIES, load_case
-    from ltca.errors import CaseError
     from ltca.cylindrical.loaded_model import Fidelity, prepare
     from ltca.cylindrical.model import build_model
     from ltca.cylindrical.run import cycle_rolls
+    from ltca.errors import CaseError
+    from ltca.fem.calculix.run import ccx_path
     ccx_path()
     say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)
     if refine < 0 or refine > 4:

@@ -41,8 +41,8 @@ def finite(v):
 
 def run(parser: argparse.ArgumentParser, work: Callable[[argparse.Namespace], int], argv: list[str] | None) -> int:
     """Parse ``argv`` and run ``work``; a ``CaseError`` or a missing ``ccx`` prints one line and returns 2."""
-    from ltca.fem.calculix.run import CcxNotFound
     from ltca.errors import CaseError
+    from ltca.fem.calculix.run import CcxNotFound
     a = parser.parse_args(argv)
     try:
         return work(a)
