@@ -1,10 +1,10 @@
-"""Flank compliance of a bevel member: its mapped whole body (:mod:`fem.solids.bevel_body`) on the one compliance
-path of every gear type (:func:`fem.compliance.flank_compliance`: FE far field on a coarse flank grid, read at
+"""Flank compliance of a bevel member: its mapped whole body (:mod:`ltca.fem.solids.bevel_body`) on the one compliance
+path of every gear type (:func:`ltca.fem.compliance.flank_compliance`: FE far field on a coarse flank grid, read at
 two depths with the half-space part of the same patch loads removed, plus the near field at the cells).
 
 The compliance grid is the loaded flank's own axial-section grid: depth fraction t from the flank grid's lowest
 row (a small root offset above the root cone) to the face cone, and cone distance L from toe to heel; points and
-normals are exact (:func:`geometry.bevel.sampling.flank_at`).  Tooth k's grid is tooth 0's turned by
+normals are exact (:func:`ltca.geometry.bevel.sampling.flank_at`).  Tooth k's grid is tooth 0's turned by
 k 2 pi / z about the member axis.  Root stresses are read 0.05 mm inside the loaded fillet (between the root
 offset row and the fillet / flank boundary), along the face.
 """
@@ -16,8 +16,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from geometry.bevel.sampling import fillet_boundary, flank_at
-from geometry.flank import Flank
+from ltca.geometry.bevel.sampling import fillet_boundary, flank_at
+from ltca.geometry.flank import Flank
 
 from .compliance import BodyCompliance, flank_compliance
 from .solids.bevel_body import BevelBodySpec, build_bevel_body
@@ -34,7 +34,7 @@ class BevelComplianceSpec:
     depth : read depth d of the regular part (also 2d), mm, capped at 15 % of the local tooth thickness; 0: no
     near field;  rim_depth : blank under the root cone, mm (without a support);  support : the mounting in
     service, ``("seat", rho)`` or ``("face", Z)``;  divisions : mesh divisions; both of
-    :class:`fem.solids.bevel_body.BevelBodySpec`;  root_points : (along the fillet, along the face).
+    :class:`ltca.fem.solids.bevel_body.BevelBodySpec`;  root_points : (along the fillet, along the face).
     """
     side: str
     loaded: tuple[int, ...]
@@ -80,7 +80,7 @@ def bevel_compliance(concave: Flank, convex: Flank, z: int, root_offset: float, 
     root_offset : float
         mm.
     convex_shift : float
-        Rotation of the convex flank onto tooth 0 (:func:`fem.solids.bevel_body.convex_shift`), rad.
+        Rotation of the convex flank onto tooth 0 (:func:`ltca.fem.solids.bevel_body.convex_shift`), rad.
     spec : BevelComplianceSpec
     cache_dir : path, optional
         Mesh cache.

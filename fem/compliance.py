@@ -1,6 +1,6 @@
 """Flank compliance of one gear body: FE far field on a coarse flank grid plus the half-space near field.
 
-The body is the whole gear (:mod:`fem.solids.gear_body`: the 360 deg rim, web and hub, the teeth that
+The body is the whole gear (:mod:`ltca.fem.solids.gear_body`: the 360 deg rim, web and hub, the teeth that
 can touch and one neighbour each side meshed finely, held at the bore as on a rigid shaft, or at the rim
 of an internal gear as in a rigid housing); it is meshed once, factorised once, and loaded by a unit normal force spread over a small patch around
 each node of a coarse grid on the loaded flanks. The coarse FE cannot resolve the contact's local
@@ -30,7 +30,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import scipy.sparse as sp
 
-from geometry.cylindrical import arc_length, helical_flank
+from ltca.geometry.cylindrical import arc_length, helical_flank
 from .elastic import assemble_stiffness
 from .fillet import fillet_points, fillet_size
 from .loads import patch_loads, patch_quadrature
@@ -161,8 +161,8 @@ def _patch_halfspace(quadrature, Y, Nn, n_teeth, E, nu) -> np.ndarray:
 
     Only pairs on the same flank: (n, n) block diagonal, mm/N. The half-space is the one tangent at the
     receiver: depth and lateral distance are measured along and across its normal, the patch traction is
-    the cosine bell of :func:`fem.loads.patch_loads` on the facet quadrature points (``quadrature``, from
-    :func:`fem.loads.patch_quadrature`)."""
+    the cosine bell of :func:`ltca.fem.loads.patch_loads` on the facet quadrature points (``quadrature``, from
+    :func:`ltca.fem.loads.patch_quadrature`)."""
     from .halfspace import point_influence_sq
     patch, _, pts, w = quadrature
     n = len(Y)
@@ -263,7 +263,7 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
         Stress read-out points in the fillets, and their teeth.
     recovery : {"element", "nodal"}
         Stress at the read-out points: of the element containing each, or averaged at the nodes as CalculiX's
-        (:func:`fem.readout.stress_matrix`). The cylindrical bodies use "nodal".
+        (:func:`ltca.fem.readout.stress_matrix`). The cylindrical bodies use "nodal".
     """
     say = progress or (lambda msg: None)
     t = dict(timings or {})

@@ -1,5 +1,5 @@
-"""Linear elasticity on quadratic (10-node) tetrahedra: the stiffness (loads in :mod:`fem.loads`, point
-read-out in :mod:`fem.readout`).
+"""Linear elasticity on quadratic (10-node) tetrahedra: the stiffness (loads in :mod:`ltca.fem.loads`, point
+read-out in :mod:`ltca.fem.readout`).
 
 Conventions used across ``fem``:
 
@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from fem.solver import Factorization, factorize
+from ltca.fem.solver import Factorization, factorize
 
 __all__ = ["assemble_stiffness", "factorize", "Factorization", "rigid_body_modes", "p2_shape", "lame"]
 

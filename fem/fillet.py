@@ -1,11 +1,11 @@
 """The root fillet of a generated tooth outline: its read-out points and the element size that resolves it.
 
 The root stress is read as the largest principal stress at points ``DEPTH`` = 0.05 mm inside the fillet on the
-side of the loaded flank (:meth:`fem.compliance.BodyCompliance.root_max`; CalculiX's is read the same way in
-:mod:`ltca.verify.whole_root`), averaged at the nodes (:func:`fem.readout.nodal_stress`). Near a fillet of radius
+side of the loaded flank (:meth:`ltca.fem.compliance.BodyCompliance.root_max`; CalculiX's is read the same way in
+:mod:`ltca.verify.whole_root`), averaged at the nodes (:func:`ltca.fem.readout.nodal_stress`). Near a fillet of radius
 rho the stress falls by about 2 x / rho over a depth x (relative stress gradient of a notch, about 2 / rho:
 Peterson's Stress Concentration Factors, 3rd ed., 2008, ch. 1): on FZG C14 by 20 % between 0.05 and 0.3 mm. The
-straight-edged quadratic tetrahedra (:mod:`fem.solids.mesh_record`) are linear in stress and replace the fillet by
+straight-edged quadratic tetrahedra (:mod:`ltca.fem.solids.mesh_record`) are linear in stress and replace the fillet by
 chords of sagitta h^2 / (8 rho) with kinks of h / rho rad between them. At h = 1.35 mm on a 2 mm fillet (FZG C14's
 flank element size at the default fidelity) the sagitta is 0.11 mm, twice the read depth, and the stress read
 0.05 mm inside varies by +-10 % from element to element along the face. The read fillets are therefore meshed
@@ -14,7 +14,7 @@ fidelities, 0.35 at the fine: ``ltca.case.FIDELITIES``), whatever the flank elem
 ``ROOT_STEP`` apart.
 
 Units: mm. Outlines are (n, 2) transverse points with ``kind`` codes (1 fillet) and ``side`` codes (-1, +1), as
-generated (``geometry.involute.ToothProfile``).
+generated (``ltca.geometry.involute.ToothProfile``).
 """
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """Surface loads on quadratic (6-node) facets of a P2 tetrahedral mesh: tractions and unit patch loads.
 
-Conventions of :mod:`fem.elastic` (``tri6`` facets: vertices 0-2, then mid-edge nodes of 01, 12, 20; dofs
+Conventions of :mod:`ltca.fem.elastic` (``tri6`` facets: vertices 0-2, then mid-edge nodes of 01, 12, 20; dofs
 node-major). Loads integrate over the quadratic facets (curved surfaces exactly as meshed).
 """
 from __future__ import annotations

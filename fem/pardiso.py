@@ -1,4 +1,4 @@
-"""MKL PARDISO for :mod:`fem.solver`: where MKL's runtime is, and the factorisation with its back-substitution.
+"""MKL PARDISO for :mod:`ltca.fem.solver`: where MKL's runtime is, and the factorisation with its back-substitution.
 
 pypardiso (:class:`pypardiso.PyPardisoSolver`) holds PARDISO's handle and parameters; the two phases are called
 through its ``_mkl_pardiso`` with the arguments of its ``_call_pardiso`` (see :func:`pardiso_factor` for what is
@@ -40,7 +40,7 @@ def pardiso_factor(Kff: sp.csr_matrix, symmetric: bool):
     Parameters
     ----------
     Kff : scipy.sparse.csr_matrix, (m, m)
-        With ``symmetric`` (``mtype=2``, Cholesky) its upper triangle (:func:`fem.solver._free_block` with
+        With ``symmetric`` (``mtype=2``, Cholesky) its upper triangle (:func:`ltca.fem.solver._free_block` with
         ``upper``), else the whole block (``mtype=11``).
     symmetric : bool
 

@@ -1,6 +1,6 @@
 """Point read-out on a P2 tetrahedral mesh: locating points, displacement interpolation, stress.
 
-Conventions of :mod:`fem.elastic` (straight-edged, subparametric tets; dofs node-major).
+Conventions of :mod:`ltca.fem.elastic` (straight-edged, subparametric tets; dofs node-major).
 """
 from __future__ import annotations
 

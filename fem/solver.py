@@ -29,7 +29,7 @@ Back-substitution (FZG C14 pinion body: 63k free dofs, 216 patch loads, 1476 obs
   about 8 times slower for a solve no faster than the plain one.
 - With `observe`, ``observe @ K^-1 @ F = (K^-1 @ observe.T).T @ F`` (K symmetric), so the cheaper
   side is solved for: the loads when ``k <= r``, the observed rows when ``r < k``.
-- Around the factor: PARDISO is called directly (:mod:`fem.pardiso`: no zeroed and C-reordered copy of the
+- Around the factor: PARDISO is called directly (:mod:`ltca.fem.pardiso`: no zeroed and C-reordered copy of the
   solution, no SHA-1 of the matrix), the observed rows gather only the solution rows they read
   (:class:`_Gather`), and the free block is cut in one pass over K (:func:`_free_block`).
 """

@@ -6,7 +6,7 @@ Applied Theory*, 2nd ed. 2004, ch. 10-11 for rack generation, ch. 13 for interna
 * the straight rack flank generates the involute, the rack tip-edge generates the trochoidal fillet and the
   rack tip line the root circle (rack: :func:`generate_by_rack`);
 * a pinion-type shaper (its own tooth: involute + tip rounding) generates internal gears
-  (:mod:`geometry.shaper`).
+  (:mod:`ltca.geometry.shaper`).
 
 Envelope points are explicit: a cutter point with normal ``n`` is in contact when its normal passes through
 the pitch point ``I`` (Willis' theorem, Litvin sec. 6.1), which fixes the generating motion parameter for
@@ -23,8 +23,8 @@ Frame: gear axis = z, tooth centred on +y. Polar angles ("flank angles") are mea
 positive counter-clockwise (towards -x), so the left flank (x < 0) has positive angles.
 
 The pieces live in their own modules and are re-exported here: the involute function and sampling in
-:mod:`geometry.transverse`, :class:`RackCutter` and :class:`GearBlank` in :mod:`geometry.gear_blank`,
-:class:`ToothProfile` in :mod:`geometry.profile`; this module holds the rack generation.
+:mod:`ltca.geometry.transverse`, :class:`RackCutter` and :class:`GearBlank` in :mod:`ltca.geometry.gear_blank`,
+:class:`ToothProfile` in :mod:`ltca.geometry.profile`; this module holds the rack generation.
 """
 from __future__ import annotations
 

@@ -1,8 +1,8 @@
 """A whole gear's transverse outline: which points lie in its material, and how far they are from it.
 
-A :class:`~geometry.profile.ToothProfile` holds ONE tooth and the two half gaps beside it (tooth centred
+A :class:`~ltca.geometry.profile.ToothProfile` holds ONE tooth and the two half gaps beside it (tooth centred
 on +y); the gear is ``z`` copies, tooth ``k`` rotated clockwise by ``k 2 pi / z`` (the convention of
-:mod:`geometry.cylindrical` and :mod:`geometry.pair`). A point is brought into tooth 0's sector by
+:mod:`ltca.geometry.cylindrical` and :mod:`ltca.geometry.pair`). A point is brought into tooth 0's sector by
 rounding its clockwise polar angle to the nearest pitch, then
 
 * **inside test** by the polar half-angle function ``h(rho)`` of the right half outline (tip corner to
@@ -12,7 +12,7 @@ rounding its clockwise polar angle to the nearest pitch, then
   (checked on construction; ``ValueError`` otherwise);
 * **distance** to the polyline: the ``k`` nearest vertices (``scipy.spatial.cKDTree``) and the segments on
   either side of each, exact point-segment distance. With the profile sampling of
-  :mod:`geometry.transverse` (spacing <= 5 um on flank and fillet) this is exact to the chord error.
+  :mod:`ltca.geometry.transverse` (spacing <= 5 um on flank and fillet) this is exact to the chord error.
 
 Units mm, rad. Points are (n, 2) arrays (the project's transverse convention).
 """

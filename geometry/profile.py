@@ -2,7 +2,7 @@
 
 Frame: gear axis = z, tooth centred on +y. Polar angles ("flank angles") are measured from +y,
 positive counter-clockwise (towards -x), so the left flank (x < 0) has positive angles. The generators
-(:func:`geometry.involute.generate_by_rack`, :func:`geometry.shaper.generate_by_shaper`) build the right
+(:func:`ltca.geometry.involute.generate_by_rack`, :func:`ltca.geometry.shaper.generate_by_shaper`) build the right
 half, from the tooth centre to the right mid-gap, and :func:`_assemble` mirrors it into the record.
 """
 from __future__ import annotations
@@ -32,7 +32,7 @@ class ToothProfile:
     start at the fillet; internal gears: r_tip < r_form < r_root).
     s_ref : transverse tooth thickness (arc) on the reference circle, mm (internal: of the internal tooth).
     alpha_t, beta_b : rad.   undercut : the fillet cut into the involute.
-    tip_edge : :class:`geometry.tip_edge.TipEdge` or None, a rounding or chamfer of the tip edges (the outline
+    tip_edge : :class:`ltca.geometry.tip_edge.TipEdge` or None, a rounding or chamfer of the tip edges (the outline
     carries it; the involute ends at ``r_flank_end``).
     """
 

@@ -3,8 +3,8 @@
 The shaper is an external gear with the blank's module and pressure angle (its own tooth: involute plus tip
 rounding); the internal tooth is the envelope of the shaper tooth in the relative rolling of the shaper's
 pitch circle inside the gear's (Litvin & Fuentes, *Gear Geometry and Applied Theory*, 2nd ed. 2004, ch. 13).
-Envelope points follow from Willis' theorem as for the rack (:mod:`geometry.involute`); the frame, the
-profile record and the sampling rules are those of :mod:`geometry.profile` and :mod:`geometry.transverse`.
+Envelope points follow from Willis' theorem as for the rack (:mod:`ltca.geometry.involute`); the frame, the
+profile record and the sampling rules are those of :mod:`ltca.geometry.profile` and :mod:`ltca.geometry.transverse`.
 """
 from __future__ import annotations
 

@@ -4,7 +4,7 @@ A generated tooth has a sharp edge where its involute meets the tip circle. A ro
 replaces the corner by a circular arc tangent to the involute and to the tip circle (inside the tooth); a
 chamfer of leg ``c`` by a straight cut from the involute point ``c`` from the corner (along the involute) to the
 tip-circle point ``c`` from the corner (along the tip circle). Both are built on the right flank of tooth 0 and
-mirrored, so the transverse outline of :class:`geometry.profile.ToothProfile` (and every body meshed from it)
+mirrored, so the transverse outline of :class:`ltca.geometry.profile.ToothProfile` (and every body meshed from it)
 carries them; the involute then ends at ``TipEdge.r_start`` instead of at the tip circle.
 
 Contact analysis evaluates the flank on the analytic involute up to the tip circle: :func:`tip_edge_depth`
@@ -12,7 +12,7 @@ gives the transverse material removed there (distance from the involute point to
 outline), which enters the gaps like a flank modification. Internal gears (tip circle inside the form circle)
 are handled the same way with the rounding tangent to the tip circle from outside.
 
-Frame and conventions as in :mod:`geometry.profile` (tooth centred on +y; right flank x > 0).
+Frame and conventions as in :mod:`ltca.geometry.profile` (tooth centred on +y; right flank x > 0).
 """
 from __future__ import annotations
 

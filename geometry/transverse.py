@@ -3,7 +3,7 @@ inverse, polar points in the tooth frame, and sampling of curves to a chord-erro
 
 Frame: gear axis = z, tooth centred on +y; the helpers below measure angles clockwise from +y ("cw").
 Sampling: chord error < ``_CHORD_TOL`` everywhere, point spacing <= ``_H_MAX`` on flank and fillet and
-<= ``_H_MAX_ARC`` on root and tip arcs (:mod:`geometry.involute`, :mod:`geometry.shaper`).
+<= ``_H_MAX_ARC`` on root and tip arcs (:mod:`ltca.geometry.involute`, :mod:`ltca.geometry.shaper`).
 """
 from __future__ import annotations
 

@@ -87,7 +87,7 @@ def _cmd_validate(a: argparse.Namespace) -> int:
         from .verify.validate import run_validate
         return run_validate(out=a.out, progress=not a.quiet)
     a.case = a.case or str(case_path("fzg_c14"))
-    from fem.calculix.run import CcxNotFound
+    from ltca.fem.calculix.run import CcxNotFound
     try:
         if a.reference == "calculix" and _is_bevel(a.case):
             if a.torque is not None and not 0 < a.torque <= 1e5:

@@ -17,9 +17,9 @@ _BEVEL_FIELDS = ("bevel.working.path_angle_deg", "bevel.working.te_magnitude_arc
 
 def classify(exc: BaseException) -> tuple[int, str]:
     """(exit status, one-line message) of an exception."""
-    from fem.contact import ContactNotConverged
-    from geometry.bevel.generation import MeshingError
-    from geometry.bevel.tca import ContactError
+    from ltca.fem.contact import ContactNotConverged
+    from ltca.geometry.bevel.generation import MeshingError
+    from ltca.geometry.bevel.tca import ContactError
     text = " ".join(str(exc).split())[:300]
     if isinstance(exc, (MeshingError, ContactError)):
         fields = ", ".join(f"'{f}'" for f in _BEVEL_FIELDS)

@@ -6,7 +6,7 @@ A kind supplies its contact cells and their gaps; this module does the rest:
   half-space near field between the cells of one tooth pair (Vijayakar's split: the coarse FE mesh carries the
   bodies' bending and the half-space the local contact flattening),
   ``C = W1 C1 W1' + W2 C2 W2' + sum_pairs N_pair``, symmetrised;
-- :func:`solve_rounds`: the complementarity solve with torque balance (:func:`fem.contact.solve_contact`),
+- :func:`solve_rounds`: the complementarity solve with torque balance (:func:`ltca.fem.contact.solve_contact`),
   repeated while the kind widens a cell window whose rim carries load (or adds a tooth pair the loaded rotation
   closes);
 - :func:`root_stresses`: the fillet stresses of both bodies by superposition of their stored unit-load responses.
@@ -20,7 +20,7 @@ from typing import Callable, Iterable
 import numpy as np
 import scipy.sparse as sp
 
-from fem.contact import ContactNotConverged, ContactSolution, solve_contact
+from ltca.fem.contact import ContactNotConverged, ContactSolution, solve_contact
 
 from .errors import ConvergenceError
 

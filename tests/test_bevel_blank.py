@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 
 
 @pytest.mark.parametrize("z1,z2,sigma", [(10, 41, 90.0), (15, 30, 90.0), (17, 23, 75.0), (12, 40, 110.0)])

@@ -39,7 +39,7 @@ def test_summary_meets_seed_targets(summary):
 def test_te_parabola_curvature_by_hand():
     """Cao et al. 2008 Eq. 2-3: TE = (m21 / 2) phi1^2 reaches the magnitude at the transfer points phi1 = +-pi / z1, so
     m21 = -2 TE / (pi / z1)^2; z1 = 12, TE = 8.25 arcsec = 3.99970e-5 rad: m21 = -1.16713e-3 rad/rad^2."""
-    from geometry.bevel.synthesis import te_curvature
+    from ltca.geometry.bevel.synthesis import te_curvature
     te = 8.25 / 206264.806
     assert te == pytest.approx(3.99970e-5, rel=1e-5)
     assert te_curvature(te, 12) == pytest.approx(-1.16713e-3, rel=1e-5)
@@ -68,7 +68,7 @@ def test_benchmark_reports_medians(monkeypatch):
     per member call + 0.25 s per pinion flank; tca 5, 7, 6 s; separation 9, 8, 10 s). Speed itself is measured
     and printed, not asserted."""
     import time as _time
-    import geometry.bevel.generation as gen
+    import ltca.geometry.bevel.generation as gen
     import ltca.bevel.run as run
     clock = [1000.0]
     steps = {"synthesis": iter([3.0, 1.0, 2.0]), "tca": iter([5.0, 7.0, 6.0]), "separation": iter([9.0, 8.0, 10.0])}

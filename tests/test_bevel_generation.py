@@ -5,12 +5,12 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
 
-from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.cutter import HeadCutter
-from geometry.bevel.generation import (MeshingError, generate_flank, generate_member, normal_thickness,
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.cutter import HeadCutter
+from ltca.geometry.bevel.generation import (MeshingError, generate_flank, generate_member, normal_thickness,
                                        solve_axial_points, standard_gear_cut, surface_state)
-from geometry.bevel.tca import _solve_psi
-from geometry.bevel.machine import (MachineSettings, FlankCut, gear_settings, pinion_settings,
+from ltca.geometry.bevel.tca import _solve_psi
+from ltca.geometry.bevel.machine import (MachineSettings, FlankCut, gear_settings, pinion_settings,
                                     work_to_machine, cradle_to_machine, cutter_to_cradle)
 
 

@@ -5,10 +5,10 @@ import re
 import numpy as np
 import pytest
 
-from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.generation import MeshingError, generate_flank
-from geometry.bevel.machine import gear_settings, pinion_settings
-from geometry.bevel.undercut import undercut_check
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.generation import MeshingError, generate_flank
+from ltca.geometry.bevel.machine import gear_settings, pinion_settings
+from ltca.geometry.bevel.undercut import undercut_check
 
 
 def _blank(z1, pa, sp):

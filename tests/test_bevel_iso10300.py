@@ -10,7 +10,7 @@ from math import atan, cos, pi, radians, sin, sqrt, tan
 
 import pytest
 
-from geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 from ltca.bevel.iso10300 import iso10300_b1, virtual_gears
 
 Z1, Z2, M, B = 12, 36, 5.08, 25.4

@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fem.hertz import elliptic_hertz
-from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, tca
+from ltca.fem.hertz import elliptic_hertz
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, tca
 from ltca.bevel.analysis import build_pair
 from ltca.bevel.case import load_bevel_case
 from ltca.bevel.loaded import solve_position

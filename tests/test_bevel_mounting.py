@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fem.solids.bevel_body import BevelBodySpec, build_bevel_body
+from ltca.fem.solids.bevel_body import BevelBodySpec, build_bevel_body
 from ltca.bevel.analysis import build_pair
 from ltca.bevel.case import load_bevel_case
 from ltca.bevel.loaded_model import member_flanks

@@ -1,6 +1,6 @@
 """The independent bevel solid of the CalculiX check (fem.solids.bevel_occ): which side of a flank the tooth is on.
 
-The generated flanks' normals point out of the material (:func:`geometry.bevel.sampling.flank_at`); the tooth
+The generated flanks' normals point out of the material (:func:`ltca.geometry.bevel.sampling.flank_at`); the tooth
 lies against the anchor flank's normal, and its other flank is turned there by the tooth's angular thickness,
 not wrapped to a pitch (that would build the tooth space instead of the tooth).
 """
@@ -14,9 +14,9 @@ from conftest import ROOT
 
 @pytest.mark.parametrize("member,anchor", [("pinion", "concave"), ("gear", "convex")])
 def test_tooth_lies_against_the_anchor_normal(member, anchor):
-    from fem.solids.bevel_occ import BevelSolidSpec, _shift, polar
-    from geometry.bevel.generation import generate_flank
-    from geometry.bevel.sampling import flank_at
+    from ltca.fem.solids.bevel_occ import BevelSolidSpec, _shift, polar
+    from ltca.geometry.bevel.generation import generate_flank
+    from ltca.geometry.bevel.sampling import flank_at
     from ltca.bevel.analysis import build_pair
     from ltca.bevel.case import load_bevel_case
     pair = build_pair(load_bevel_case(ROOT / "cases" / "spiral_bevel_cao2008.toml"))

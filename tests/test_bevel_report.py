@@ -28,7 +28,7 @@ def bevel_run(tmp_path_factory):
 
 @pytest.mark.slow
 def test_bevel_report_is_self_contained_with_iso10300(bevel_run):
-    from geometry.bevel.blank import design_blank
+    from ltca.geometry.bevel.blank import design_blank
     from ltca import load_case
     from ltca.bevel.iso10300 import iso10300_b1
     out, head = bevel_run

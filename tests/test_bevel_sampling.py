@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.generation import generate_member, standard_gear_cut
-from geometry.bevel.sampling import axial_target, fillet_boundary, flank_at
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.generation import generate_member, standard_gear_cut
+from ltca.geometry.bevel.sampling import axial_target, fillet_boundary, flank_at
 
 
 @pytest.fixture(scope="module")

@@ -6,11 +6,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from geometry.bevel.blank import design_blank
-from geometry.bevel.design import path_line, synthesize_pinion
-from geometry.bevel.generation import standard_gear_cut
-from geometry.bevel.separation import separation_tca
-from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca
+from ltca.geometry.bevel.blank import design_blank
+from ltca.geometry.bevel.design import path_line, synthesize_pinion
+from ltca.geometry.bevel.generation import standard_gear_cut
+from ltca.geometry.bevel.separation import separation_tca
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca
 from ltca.bevel.case import load_bevel_case
 
 CASE = Path(__file__).resolve().parents[1] / "cases" / "spiral_bevel_cao2008.toml"
@@ -55,8 +55,8 @@ def test_separation_te_and_zone_agree_with_continuous_tca(pair, side):
 
 
 def _separation_path_and_te(pair: BevelPair, side: str) -> tuple[float, float, set]:
-    """Path angle (deg, :func:`geometry.bevel.design.path_line` of the contact points, as the synthesis's
-    :func:`geometry.bevel.design.cycle_metrics` reads it off the continuous TCA) and TE range (arcsec) over one mesh cycle,
+    """Path angle (deg, :func:`ltca.geometry.bevel.design.path_line` of the contact points, as the synthesis's
+    :func:`ltca.geometry.bevel.design.cycle_metrics` reads it off the continuous TCA) and TE range (arcsec) over one mesh cycle,
     both read off the separation field on a grid twice the default's (40 x 60, 24 positions per cycle): the path
     inside the transfer points (at a transfer point two pairs tie), the TE over the closed cycle."""
     s = separation_tca(pair, side, steps_per_cycle=24, cycles=1.0, grid=(40, 60))

@@ -7,11 +7,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.generation import generate_member, standard_gear_cut
-from geometry.bevel.machine import FlankCut
-from geometry.bevel.sheet import flank_from_sheet, flank_sheet, member_sheet, sheet_toml
-from geometry.bevel.tca import tca
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.generation import generate_member, standard_gear_cut
+from ltca.geometry.bevel.machine import FlankCut
+from ltca.geometry.bevel.sheet import flank_from_sheet, flank_sheet, member_sheet, sheet_toml
+from ltca.geometry.bevel.tca import tca
 from ltca.bevel.analysis import build_pair
 from ltca.bevel.case import bevel_case_from_data
 from ltca.case import read_toml

@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from geometry.bevel.gaps import MeshGaps
-from geometry.bevel.surface_table import SurfaceTable
-from geometry.bevel.tca import RAD_PER_ARCSEC
+from ltca.geometry.bevel.gaps import MeshGaps
+from ltca.geometry.bevel.surface_table import SurfaceTable
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC
 
 from conftest import CASES
 
@@ -61,7 +61,7 @@ def test_loaded_cycle_with_and_without_the_table(pair):
     exact ones within 1e-3 arcsec and 0.01 %: the table is not a model change."""
     from ltca.bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
     from ltca.bevel.loaded import solve_position
-    import geometry.bevel.gaps as gaps_module
+    import ltca.geometry.bevel.gaps as gaps_module
     bodies = prepare_bodies(pair, "concave", BevelFidelity.named("coarse"))
     phi = np.linspace(-0.5, 0.5, 3) * 2 * np.pi / pair.blank.pinion.z
     out = {}

@@ -10,12 +10,12 @@ import time
 import numpy as np
 import pytest
 
-from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.design import cycle_metrics, synthesize_pinion
-from geometry.bevel.generation import generate_flank, standard_gear_cut
-from geometry.bevel.machine import MemberCut
-from geometry.bevel.synthesis import FlankTarget, generated_curvature, local_synthesis, te_curvature
-from geometry.bevel.tca import RAD_PER_ARCSEC, BevelPair, curvature_tensor, tca
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.design import cycle_metrics, synthesize_pinion
+from ltca.geometry.bevel.generation import generate_flank, standard_gear_cut
+from ltca.geometry.bevel.machine import MemberCut
+from ltca.geometry.bevel.synthesis import FlankTarget, generated_curvature, local_synthesis, te_curvature
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, BevelPair, curvature_tensor, tca
 
 # Cao et al. 2008 sec. 4: working flank (pinion concave) 22 deg / 8.25 arcsec, coast 14 deg / 11.25 arcsec.
 # Our eta2 is signed (positive towards the tooth top going to the heel): the coast path runs the other way.

@@ -4,10 +4,10 @@ import time
 import numpy as np
 import pytest
 
-from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.generation import normal_thickness
-from geometry.bevel.machine import conjugate_pinion_settings, gear_settings
-from geometry.bevel.tca import RAD_PER_ARCSEC, ContactError, Assembly, BevelPair, mesh_frames, tca
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.generation import normal_thickness
+from ltca.geometry.bevel.machine import conjugate_pinion_settings, gear_settings
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, ContactError, Assembly, BevelPair, mesh_frames, tca
 
 
 @pytest.fixture(scope="module")

@@ -7,11 +7,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.cutter import HeadCutter
-from geometry.bevel.generation import generate_member, solve_axial_points, standard_gear_cut, surface_state
-from geometry.bevel.universal import blade_coordinates, universal_state
-from geometry.bevel.machine import FlankCut, MachineSettings
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.cutter import HeadCutter
+from ltca.geometry.bevel.generation import generate_member, solve_axial_points, standard_gear_cut, surface_state
+from ltca.geometry.bevel.universal import blade_coordinates, universal_state
+from ltca.geometry.bevel.machine import FlankCut, MachineSettings
 
 REF = Path(__file__).parent / "reference"
 

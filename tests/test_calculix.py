@@ -7,9 +7,9 @@ import shutil
 import numpy as np
 import pytest
 
-from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, _face_numbers, write_deck
-from fem.calculix.run import CCX_INSTALL, CcxNotFound, ccx_path
-from fem.solids import ContactLine, BodyMesh, facets_near_lines
+from ltca.fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, _face_numbers, write_deck
+from ltca.fem.calculix.run import CCX_INSTALL, CcxNotFound, ccx_path
+from ltca.fem.solids import ContactLine, BodyMesh, facets_near_lines
 
 needs_ccx = pytest.mark.skipif(shutil.which("ccx") is None, reason=f"CalculiX missing: {CCX_INSTALL}")
 
@@ -126,9 +126,9 @@ def test_narrowest_half_width_is_the_hertz_width(fzg_lm):
 def test_focus_refines_only_its_window_of_the_contact_line(fzg_lm):
     """The pressure ladder's focus zone: elements of the focus size in the mid-face window of the contact
     line, the band's size elsewhere along the same line."""
-    from fem.compliance import body_spec
-    from fem.solids import build_refined_body
-    from geometry.pair import rotation_z
+    from ltca.fem.compliance import body_spec
+    from ltca.fem.solids import build_refined_body
+    from ltca.geometry.pair import rotation_z
     from ltca.verify.calculix import Focus, _window, contact_lines
     model = fzg_lm.model
     phi1 = model.phi_pitch

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from ltca.drivetrain.chain import evaluate_chain, load_chain_case, pitch_deviation_bound, roll_ratio_error, run_chain
-from geometry.errors import random_pitch_deviations, worst_case_pitch_deviations
+from ltca.geometry.errors import random_pitch_deviations, worst_case_pitch_deviations
 from ltca.errors import CaseError
 
 from conftest import CASES

@@ -166,9 +166,9 @@ def test_exception_exit_statuses(monkeypatch, capsys):
     """MeshingError/ContactError: 2 with fields and advice; non-converged contact: 3 with its residual; a bug: 1,
     with the traceback and a line asking for a report."""
     import ltca.cli as cli
-    from fem.contact import ContactNotConverged
-    from geometry.bevel.generation import MeshingError
-    from geometry.bevel.tca import ContactError
+    from ltca.fem.contact import ContactNotConverged
+    from ltca.geometry.bevel.generation import MeshingError
+    from ltca.geometry.bevel.tca import ContactError
     for exc, status, text in ((MeshingError("Newton lost the flank"), 2, "'bevel.spiral_angle_deg'"),
                               (ContactError("path leaves the flank"), 2, "'bevel.working.path_angle_deg'"),
                               (ContactNotConverged(3.2e-4, 80), 3, "3.200e-04"),

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize
 
-from fem.contact import ContactNotConverged, solve_contact
-from fem.halfspace import surface_influence_matrix
+from ltca.fem.contact import ContactNotConverged, solve_contact
+from ltca.fem.halfspace import surface_influence_matrix
 
 E, NU = 206000.0, 0.3
 
@@ -146,7 +146,7 @@ def test_timing(nx, ny):
 
 def test_lawson_hanson_fallback_matches():
     # The anti-cycling fallback (private) started from a single loaded cell must reach the same KKT point.
-    from fem.contact import _lawson_hanson
+    from ltca.fem.contact import _lawson_hanson
     C, g0, h, load = _flank_problem(12, 8, seed=7, force=40.0)
     ref = solve_contact(C, g0, h, load)
     F = np.zeros(g0.size)

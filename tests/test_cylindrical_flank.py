@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from geometry.cylindrical import flank_point_normal, helical_flank
-from geometry.flank import Flank, surface_curvatures
-from geometry.involute import GearBlank, RackCutter, generate_by_rack
+from ltca.geometry.cylindrical import flank_point_normal, helical_flank
+from ltca.geometry.flank import Flank, surface_curvatures
+from ltca.geometry.involute import GearBlank, RackCutter, generate_by_rack
 
 DEG = np.pi / 180
 A20 = 20 * DEG
@@ -96,7 +96,7 @@ def test_helical_flank_defaults_and_bad_input():
 
 
 def test_internal_flank_is_concave():
-    from geometry.shaper import ShaperCutter, generate_by_shaper
+    from ltca.geometry.shaper import ShaperCutter, generate_by_shaper
     m = 3.0
     for beta in (0.0, 20 * DEG):
         p = generate_by_shaper(GearBlank(60, m, A20, beta=beta, d_tip=2 * 88.0 / np.cos(beta) if beta else 175.0,

@@ -135,7 +135,7 @@ def test_a_design_the_geometry_cannot_make_is_infeasible():
     d["design"]["variables"]["working_path_angle_deg"]["lower"] = -40.0
     spec = parse_design(d, "bevel", 1)
     b = BevelBackend(d, spec, str(SHIPPED))
-    b.gear = __import__("geometry.bevel.generation", fromlist=["x"]).standard_gear_cut(b.blank)
+    b.gear = __import__("ltca.geometry.bevel.generation", fromlist=["x"]).standard_gear_cut(b.blank)
     b._start_targets = b.targets(b.start())
     m = b.evaluate({"working_path_angle_deg": -30.0, "working_te_magnitude_arcsec": 8.25})
     assert m.failure and math.isnan(m.te_ptp_arcsec[0])

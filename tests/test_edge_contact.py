@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from conftest import with_case
-from geometry.cylindrical import radius_of_arc
+from ltca.geometry.cylindrical import radius_of_arc
 from ltca.cylindrical.edges import EDGES, classify, edge_summary, position_edges
 from ltca.cylindrical.loaded import solve_position
 from ltca.cylindrical.loaded_model import hertz_line

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-import fem.elastic as el
-import fem.loads as loads
-import fem.readout as readout
-from fem.solver import available_methods
+import ltca.fem.elastic as el
+import ltca.fem.loads as loads
+import ltca.fem.readout as readout
+from ltca.fem.solver import available_methods
 
 E, NU = 210e3, 0.3
 

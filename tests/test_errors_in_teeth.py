@@ -56,7 +56,7 @@ def _pitch_error_mods():
 
 
 def test_pitch_error_case_follows_from_the_seed_002_indexing_chain():
-    from geometry.errors import tooth_positions, worst_case_pitch_deviations
+    from ltca.geometry.errors import tooth_positions, worst_case_pitch_deviations
     from ltca.drivetrain.chain import evaluate_chain, load_chain_case, pitch_deviation_bound
     indexing_z1 = next(c for c in load_chain_case(str(CASES / "chain_zftkk250.toml")) if "index" in c.name.lower()
                        and c.name.lower().rstrip().endswith("z1"))
@@ -105,7 +105,7 @@ def test_load_moves_to_the_pair_with_the_smaller_gap(fzg_lm, fzg_case):
 
 
 def test_roll_ratio_error_shifts_the_bearing_pattern(fzg_lm, fzg_case):
-    from geometry.modification import profile_slope_from_roll_ratio
+    from ltca.geometry.modification import profile_slope_from_roll_ratio
     T = fzg_case.torques[0]
     eps = 8.0e-4          # envelope chain extreme of Nguyen et al. (ltca.drivetrain.chain.roll_ratio_error: 0.99920)
     p1 = fzg_lm.model.pinion

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fem import fillet as ff
+from ltca.fem import fillet as ff
 
 
 def _arc_outline(rho: float = 2.0, n: int = 400):
@@ -54,8 +54,8 @@ def test_fzg_fillet_radii_and_read_out_points(fzg_model):
 
 def test_nodal_stress_exact_for_a_linear_field_and_continuous():
     from skfem import MeshTet
-    from fem import readout
-    from fem.elastic import lame
+    from ltca.fem import readout
+    from ltca.fem.elastic import lame
     m = MeshTet().refined(2)
     rng = np.random.default_rng(1)
     nodes = m.p.T + 0.02 * rng.standard_normal(m.p.T.shape) * ((m.p.T > 0) & (m.p.T < 1)).all(axis=1)[:, None]

@@ -28,7 +28,7 @@ def _volume(mesh) -> float:
 
 
 def _spec(profile, r_support, b, **kw):
-    from fem.solids import GearBodySpec
+    from ltca.fem.solids import GearBodySpec
     return GearBodySpec(np.asarray(profile.xy), np.asarray(profile.kind, np.int8), np.asarray(profile.side, np.int8),
                         profile.z, (-1, 0, 1), r_support, b, float(np.tan(profile.beta) / profile.r_ref),
                         profile.internal, **kw)
@@ -36,7 +36,7 @@ def _spec(profile, r_support, b, **kw):
 
 def _section_area(profile, far_teeth: str) -> float:
     """Area inside the toothed boundary: every tooth's outline, or three teeth closed by the root circle."""
-    from fem.solids.planar import rot2
+    from ltca.fem.solids.planar import rot2
     xy = np.asarray(profile.xy)
     pitch = 2 * np.pi / profile.z
     if far_teeth == "full":
@@ -50,7 +50,7 @@ def _section_area(profile, far_teeth: str) -> float:
 
 @pytest.mark.parametrize("far_teeth", ["none", "full"])
 def test_volume_is_section_area_times_face_width(fzg_model, far_teeth):
-    from fem.solids import build_gear_body
+    from ltca.fem.solids import build_gear_body
     p = fzg_model.pinion
     r_bore, b = 15.0, 14.0
     mesh = build_gear_body(_spec(p, r_bore, b, far_teeth=far_teeth, h_flank=2.0, h_body=6.0))
@@ -62,7 +62,7 @@ def test_volume_is_section_area_times_face_width(fzg_model, far_teeth):
 
 
 def test_webbed_body_volume_counts_each_region_at_its_width(fzg_model):
-    from fem.solids import build_gear_body
+    from ltca.fem.solids import build_gear_body
     p = fzg_model.pinion
     b, r_bore, r_rim, r_hub, bs, off = 14.0, 10.0, p.r_root - 9.0, 15.0, 4.0, 2.0
     mesh = build_gear_body(_spec(p, r_bore, b, rim=(r_rim, r_hub, bs, off), h_flank=2.0, h_body=6.0))
@@ -76,8 +76,8 @@ def test_webbed_body_volume_counts_each_region_at_its_width(fzg_model):
 
 def test_helical_flank_nodes_lie_on_the_generated_helicoid():
     """Corner nodes of a flank facet, turned back by the lead twist, land on the transverse outline (< 1 um)."""
-    from fem.solids import build_gear_body
-    from fem.solids.planar import rot2
+    from ltca.fem.solids import build_gear_body
+    from ltca.fem.solids.planar import rot2
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
     p = build_model(load_case(CASES / "helical_c14.toml")).pinion
@@ -85,7 +85,7 @@ def test_helical_flank_nodes_lie_on_the_generated_helicoid():
     mesh = build_gear_body(spec)
     v = mesh.nodes[np.unique(mesh.facets["flank_0_right"][:, :3])]
     back = np.stack([rot2(q[None, :2], -spec.lead_twist * q[2])[0] for q in v])
-    from fem.solids.planar import polyline_distance
+    from ltca.fem.solids.planar import polyline_distance
     dense = np.asarray(p.xy)
     d = np.array([polyline_distance(q, dense) for q in back])
     print(f"helical flank vertices off the generated outline by at most {1e3 * d.max():.3f} um")
@@ -94,7 +94,7 @@ def test_helical_flank_nodes_lie_on_the_generated_helicoid():
 
 
 def test_internal_gear_is_held_at_its_outer_rim():
-    from fem.solids import build_gear_body
+    from ltca.fem.solids import build_gear_body
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
     model = build_model(load_case(CASES / "internal_spur.toml"))
@@ -108,7 +108,7 @@ def test_internal_gear_is_held_at_its_outer_rim():
 def test_read_fillets_are_meshed_at_h_fillet_and_nothing_else_changes(fzg_model):
     """The named fillets get edges of about h_fillet, the other fillets keep h_flank; without h_fillet the
     spec (its hash: the mesh caches) does not change."""
-    from fem.solids import build_gear_body
+    from ltca.fem.solids import build_gear_body
     p = fzg_model.pinion
     plain = _spec(p, 20.0, 14.0, h_flank=2.0, h_body=6.0)
     assert plain.spec_hash == _spec(p, 20.0, 14.0, h_flank=2.0, h_body=6.0, h_fillet=None, fillets=()).spec_hash
@@ -127,7 +127,7 @@ def test_read_fillets_are_meshed_at_h_fillet_and_nothing_else_changes(fzg_model)
 
 def test_far_teeth_change_the_flank_compliance_by_under_one_percent(fzg_model, tmp_path):
     """The design choice 'far teeth left out' measured against the body with every tooth (docs/design.md)."""
-    from fem.compliance import ComplianceSpec, body_compliance
+    from ltca.fem.compliance import ComplianceSpec, body_compliance
     p = fzg_model.pinion
     base = ComplianceSpec(teeth=(-2, -1, 0, 1, 2), loaded=(-1, 0, 1), side=+1, r_range=fzg_model.pinion_range(),
                           grid=(5, 4), face_width=14.0, r_bore=fzg_model.r_bore1, h_flank=2.0, h_body=7.2, depth=1.5,

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from scipy.integrate import dblquad
 
-from fem.contact import solve_contact
-from fem.halfspace import (near_field_correction, subsurface_influence, surface_influence,
+from ltca.fem.contact import solve_contact
+from ltca.fem.halfspace import (near_field_correction, subsurface_influence, surface_influence,
                            surface_influence_matrix)
 
 E, NU = 206000.0, 0.3
@@ -160,7 +160,7 @@ def test_hertz_point_contact_sphere_on_plane():
 
 def test_point_influence_is_the_small_cell_limit_and_the_surface_formula():
     """Boussinesq point load (Johnson eq. 3.22c) against the closed-form cell integral and Love's surface value."""
-    from fem.halfspace import point_influence, subsurface_influence
+    from ltca.fem.halfspace import point_influence, subsurface_influence
     E, nu = 206000.0, 0.3
     lateral = np.array([0.0, 0.5, 1.0, 3.0])
     depth = np.array([1.0, 0.7, 2.0, 0.5])

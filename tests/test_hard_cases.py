@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from conftest import with_case
-from geometry.cylindrical import arc_length
+from ltca.geometry.cylindrical import arc_length
 from ltca.case import Modifications
 from ltca.cylindrical.loaded import solve_position
 from ltca.cylindrical.run import analyse, cycle_rolls

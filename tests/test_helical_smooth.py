@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from conftest import CASES
-from geometry.cylindrical import arc_length, flank_point_normal
+from ltca.geometry.cylindrical import arc_length, flank_point_normal
 from ltca.case import FIDELITIES, load_case
 from ltca.cylindrical.cell_clip import gear_tip_on_pinion
 from ltca.cylindrical.contact_cells import contact_strips

@@ -4,8 +4,8 @@ import time
 import numpy as np
 import pytest
 
-from geometry.involute import GearBlank, RackCutter, generate_by_rack, involute, inverse_involute
-from geometry.shaper import ShaperCutter, generate_by_shaper
+from ltca.geometry.involute import GearBlank, RackCutter, generate_by_rack, involute, inverse_involute
+from ltca.geometry.shaper import ShaperCutter, generate_by_shaper
 
 DEG = np.pi / 180
 A20 = 20 * DEG

@@ -1,6 +1,7 @@
 """The package layout: no import circles, and imports run one way, geometry <- fem <- ltca <- tools.
 
-Every .py file under geometry/, fem/ and ltca/ is parsed with ``ast``; every import counts (module level,
+Every .py file under geometry/, fem/ and ltca/ is parsed with ``ast``, under its import name: the folders
+geometry/ and fem/ are the packages ``ltca.geometry`` and ``ltca.fem``. Every import counts (module level,
 inside functions, under ``TYPE_CHECKING``), relative imports resolved. ``from p import name`` is an edge
 to the module ``p.name`` when that is one of ours, else to ``p``. A failure prints the circle it found.
 """
@@ -11,9 +12,17 @@ import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-PACKAGES = ("geometry", "fem", "ltca")                # installed
+PACKAGES = ("geometry", "fem", "ltca")                # installed (folders of the repository)
 TOOLS = "tools"                                       # maintainer tooling in the repository, not installed
-ORDER = {"geometry": 0, "fem": 1, "ltca": 2, TOOLS: 3}   # a package may import only packages of lower or equal rank
+#: folder of the repository -> its import name
+IMPORT_NAME = {"geometry": "ltca.geometry", "fem": "ltca.fem", "ltca": "ltca", TOOLS: TOOLS}
+#: layers, lowest first: a module may import only modules of its own or a lower layer
+LAYERS = ("ltca.geometry", "ltca.fem", "ltca", TOOLS)
+
+
+def _rank(mod: str) -> int:
+    """The layer of a module: the longest layer name it is or lies inside."""
+    return max((len(layer), i) for i, layer in enumerate(LAYERS) if mod == layer or mod.startswith(layer + "."))[1]
 
 
 def _modules(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> dict[str, tuple[Path, bool]]:
@@ -22,6 +31,7 @@ def _modules(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> dict[st
     for pkg in packages:
         for path in sorted((root / pkg).rglob("*.py")):
             parts = path.relative_to(root).with_suffix("").parts
+            parts = tuple(IMPORT_NAME[parts[0]].split(".")) + parts[1:]
             is_pkg = parts[-1] == "__init__"
             out[".".join(parts[:-1] if is_pkg else parts)] = (path, is_pkg)
     return out
@@ -117,9 +127,13 @@ def find_cycles(graph: dict[str, set | dict]) -> list[list[str]]:
     return cycles
 
 
-def _group(mod: str) -> str:
-    """The node of a module in the subpackage graph: ``ltca.cylindrical.run`` -> ``ltca.cylindrical``."""
-    return ".".join(mod.split(".")[:2])
+def _group(mod: str, pkg: str) -> str:
+    """The node of a module of ``pkg`` in the subpackage graph: ``ltca.cylindrical.run`` -> ``ltca.cylindrical``."""
+    return ".".join(mod.split(".")[:pkg.count(".") + 2])
+
+
+def _inside(mod: str, pkg: str) -> bool:
+    return mod.startswith(pkg + ".")
 
 
 def _show(cycles: list[list[str]]) -> str:
@@ -149,23 +163,23 @@ def subpackage_graph(graph: dict[str, dict[str, int]], pkg: str) -> dict[str, se
     """The subpackages and top-level modules of ``pkg`` as nodes, an edge where any of their modules imports."""
     groups: dict[str, set] = {}
     for mod, edges in graph.items():
-        if mod.split(".")[0] != pkg:
+        if not _inside(mod, pkg):
             continue
-        a = _group(mod)
-        groups.setdefault(a, set()).update(_group(t) for t in edges if t.split(".")[0] == pkg and _group(t) != a)
+        a = _group(mod, pkg)
+        groups.setdefault(a, set()).update(_group(t, pkg) for t in edges if _inside(t, pkg) and _group(t, pkg) != a)
     return groups
 
 
 def against_the_direction(graph: dict[str, dict[str, int]]) -> list[str]:
     return [f"  {mod} (line {line}) imports {t}" for mod, edges in sorted(graph.items())
-            for t, line in sorted(edges.items()) if ORDER[t.split(".")[0]] > ORDER[mod.split(".")[0]]]
+            for t, line in sorted(edges.items()) if _rank(t) > _rank(mod)]
 
 
 def test_the_scan_sees_every_kind_of_import(tmp_path):
     """On a small tree: relative imports, imports in functions and under TYPE_CHECKING all make edges."""
     files = {
         "geometry/__init__.py": "",
-        "geometry/a.py": "def f():\n    from fem import b\n",
+        "geometry/a.py": "def f():\n    from ltca.fem import b\n",
         "fem/__init__.py": "",
         "fem/b.py": "import ltca.x.c\n",
         "ltca/__init__.py": "",
@@ -181,7 +195,8 @@ def test_the_scan_sees_every_kind_of_import(tmp_path):
     assert set(graph["ltca.x.c"]) == {"ltca.x.d"} and set(graph["ltca.x.d"]) == {"ltca.top"}
     assert find_cycles(graph) == [["ltca.top", "ltca.x.c", "ltca.x.d", "ltca.top"]]
     assert find_cycles(subpackage_graph(graph, "ltca")) == [["ltca.top", "ltca.x", "ltca.top"]]
-    assert against_the_direction(graph) == ["  fem.b (line 1) imports ltca.x.c", "  geometry.a (line 2) imports fem.b"]
+    assert against_the_direction(graph) == ["  ltca.fem.b (line 1) imports ltca.x.c",
+                                            "  ltca.geometry.a (line 2) imports ltca.fem.b"]
 
 
 def test_the_scan_sees_the_packages():
@@ -199,7 +214,7 @@ def test_no_import_cycle_among_modules():
 def test_no_import_cycle_among_subpackages():
     """ltca's (and fem's) subpackages and top-level modules as nodes: no circle between them either."""
     graph = import_graph()
-    for pkg in ("ltca", "fem"):
+    for pkg in ("ltca", "ltca.fem"):
         cycles = find_cycles(subpackage_graph(graph, pkg))
         print(pkg, _show(cycles))
         assert not cycles, f"import circles among the subpackages of {pkg}:\n" + _show(cycles)
@@ -208,6 +223,18 @@ def test_no_import_cycle_among_subpackages():
 def test_imports_run_geometry_fem_ltca():
     bad = against_the_direction(import_graph())
     assert not bad, "imports against geometry <- fem <- ltca:\n" + "\n".join(bad)
+
+
+def test_the_layers_are_imported_under_one_namespace():
+    """No module imports the folders by their folder names (``geometry``, ``fem``): that would load a second copy
+    of a module beside ``ltca.geometry`` / ``ltca.fem``, and clash with other distributions of those names."""
+    bad = []
+    for mod, (path, _) in _modules(packages=PACKAGES + (TOOLS,)).items():
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = [a.name for a in node.names] if isinstance(node, ast.Import) else \
+                [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else []
+            bad += [f"  {mod} (line {node.lineno}) imports {n}" for n in names if n.split(".")[0] in ("geometry", "fem")]
+    assert not bad, "imports by folder name, not ltca.geometry / ltca.fem:\n" + "\n".join(bad)
 
 
 def test_every_package_says_what_it_holds():
@@ -243,7 +270,7 @@ def test_library_modules_neither_print_nor_pick_a_backend():
     """Only the command layer prints; only the command line picks a matplotlib backend."""
     printing, backend = [], []
     for mod, (path, _) in _modules().items():
-        if mod.split(".")[0] not in PACKAGES or mod.startswith("ltca.verify"):
+        if mod.startswith("ltca.verify"):
             continue
         if mod not in COMMAND_MODULES and _calls(path, "print"):
             printing.append(f"{mod}: lines {_calls(path, 'print')}")

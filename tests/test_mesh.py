@@ -7,7 +7,7 @@ import time
 import numpy as np
 import pytest
 
-from fem.solids import BodyMesh, gmsh_session
+from ltca.fem.solids import BodyMesh, gmsh_session
 from tools.segment_mesh import SegmentSpec, build_segment
 
 

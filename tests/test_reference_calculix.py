@@ -4,7 +4,7 @@ The references ``tests/reference/*_calculix_whole.json`` are computed by ``pytho
 tools.calculix_refs.freeze_whole ... FILE`` and refined by ``tools.calculix_refs.merge_whole`` (the repository's
 maintainer tooling, ``tools/calculix_refs/README.md``; each file stores the command that made it, the CalculiX version, the deck hashes, the
 mesh sizes, nodes, elements, wall times and the refinement ladder that checks their convergence): whole gears
-with every tooth built apart from our body (``fem.solids.full_gear``), the gear's bore fixed, the pinion's bore
+with every tooth built apart from our body (``ltca.fem.solids.full_gear``), the gear's bore fixed, the pinion's bore
 on a rigid body turning under the torque, penalty contact. The figures themselves are in those files.
 
 Bounds: loaded TE and mesh stiffness 2 %, load share 0.03, the flank peak pressure away from
@@ -50,7 +50,7 @@ BOUNDS = {"te": 0.02, "stiffness": 0.02, "share": 0.03, "flank_pressure": 0.05, 
           "root_gear": 0.05}
 QUANTITIES = tuple(BOUNDS)
 #: quantities always held to their bound: the ``ours_at_freeze`` stored with the references predates our
-#: root-stress read-out (:mod:`fem.fillet`), so it marks no xfail for them
+#: root-stress read-out (:mod:`ltca.fem.fillet`), so it marks no xfail for them
 ROOT_REMEASURED = ("root_pinion", "root_gear")
 #: a file whose case costs more than this (s) for our compliance at the default fidelity (``ours_compliance_wall_s``,
 #: stored in the file) has its comparisons marked slow, for the fast suite's budget: FZG C14 and helical C14 are

@@ -3,7 +3,7 @@
 ``tests/reference/eccentric_planetary_calculix.json`` was computed by ``python3 -m tools.calculix_refs.freeze_planetary
 FILE --case cases/eccentric_planetary_satellite.toml --torque ... --positions ...`` (the command, CalculiX
 version, date, mesh sizes, nodes and elements, deck hashes, wall times and the contact-band ladder are stored in
-it): both gears whole with every tooth (:mod:`fem.solids.full_gear`, the wheel internal), the wheel held at its
+it): both gears whole with every tooth (:mod:`ltca.fem.solids.full_gear`, the wheel internal), the wheel held at its
 outer diameter, the satellite bore on a rigid body turning about the satellite axis, penalty contact on every
 tooth that could close (:mod:`ltca.verify.planetary_whole`), each wheel band split at its tip corner (the corner
 zone a slave against the satellite's flank and fillet). The torque is chosen so that at least 5 pairs carry
@@ -64,7 +64,7 @@ def _share_diff(a: dict, b: dict) -> float:
 def test_internal_full_gear_is_the_ring_held_at_its_outer_diameter():
     """The wheel of the CalculiX model: every internal tooth, the outer cylinder (``rim``) at the housing radius."""
     import numpy as np
-    from fem.solids.full_gear import FullGearSpec, build_full_gear
+    from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear
     from ltca.planetary.case import load_planetary_case
     from ltca.planetary.model import build_satellite_model
     case = load_planetary_case(ROOT / "cases" / "eccentric_planetary_satellite.toml")
@@ -172,7 +172,7 @@ def test_calculix_internal_pairs_split_the_wheel_band_at_its_tip_corner(tmp_path
         fillet += len(rows(m1.facets[f"fillet_{k}_right"]) & rows(master))
     assert fillet > 0, "the satellite's fillet (below the form circle) is part of the corner pairs' master"
     assert all(p.slave[0] == "pinion" for p in pairs if p.name.startswith("P"))
-    from fem.calculix.deck import ContactPairSpec
+    from ltca.fem.calculix.deck import ContactPairSpec
     two = [ContactPairSpec("W0", ("gear", ("a",)), ("pinion", ("b",))),
            ContactPairSpec("P0", ("pinion", ("c",)), ("gear", ("d",)))]
     loads = wg.tooth_loads({"W0": np.array([3.0, 0, 0]), "P0": np.array([-1.0, 0, 0])}, two, [-9, -9], (-9, -8))

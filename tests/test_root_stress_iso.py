@@ -19,7 +19,7 @@ applying the load there):
   does not have.)
 
 The closed form below is written out from the case numbers and the basic rack; the library's 30 deg section
-(``geometry.satellite.rating.root_section``, measured on the generated outline) must agree with it. Ours: the
+(``ltca.geometry.satellite.rating.root_section``, measured on the generated outline) must agree with it. Ours: the
 largest principal fillet stress the LTCA reports for the loaded tooth, over the single-pair zone of the loaded
 mesh, extrapolated linearly in the roll angle to the outer point of single contact (where the whole load
 acts, as in ISO).
@@ -29,7 +29,7 @@ stress analysis, so a converged FE need not meet it exactly, and no literature b
 claimed (none was found). The test guards our deviation from ISO, within 2.5 % around it: ours reads below ISO on
 both members, at the default fidelity pinion -4.4 %, gear -6.3 %, at the fine (``-m slow``) -4.8 % / -5.2 %. Our FE
 root stress itself is checked independently: converged over the fidelities (tests/test_commands.py, the read
-fillets meshed at 0.4 of their radius, nodal-averaged stress: :mod:`fem.fillet`) and within 3 % of the whole-gear
+fillets meshed at 0.4 of their radius, nodal-averaged stress: :mod:`ltca.fem.fillet`) and within 3 % of the whole-gear
 CalculiX root stress of FZG C14 and helical C14 (tests/test_reference_calculix.py).
 """
 from __future__ import annotations
@@ -37,7 +37,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from geometry.transverse import involute
+from ltca.geometry.transverse import involute
 
 
 def _iso_method_b(case, member):
@@ -99,7 +99,7 @@ def _fe_at_hpstc(lm, iso, member, degrees):
 
 @pytest.mark.parametrize("member", ["pinion", "gear"])
 def test_iso_closed_form_equals_the_library_root_section(fzg_case, member):
-    from geometry.satellite.rating import root_section
+    from ltca.geometry.satellite.rating import root_section
     from ltca.cylindrical.model import build_model
     iso = _iso_method_b(fzg_case, member)
     model = build_model(fzg_case)

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from geometry.satellite.compare import compare_forming, plot_forming
-from geometry.satellite.forming import form_disk_cutter, form_hob_three_pass, form_satellite, form_special_hob
-from geometry.satellite.rating import RatingInputs, rated_torque
-from geometry.satellite.tools import DiskCutter, HobThreePass, SatelliteDesign, SpecialHob, eq4_rack_thickness
-from geometry.transverse import involute
+from ltca.geometry.satellite.compare import compare_forming, plot_forming
+from ltca.geometry.satellite.forming import form_disk_cutter, form_hob_three_pass, form_satellite, form_special_hob
+from ltca.geometry.satellite.rating import RatingInputs, rated_torque
+from ltca.geometry.satellite.tools import DiskCutter, HobThreePass, SatelliteDesign, SpecialHob, eq4_rack_thickness
+from ltca.geometry.transverse import involute
 
 DEG = np.pi / 180
 SEED = SatelliteDesign()                     # z 50, m 3, alpha 20 deg, x -0.5, k 0.6

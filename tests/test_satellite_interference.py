@@ -10,13 +10,13 @@ Hand numbers used below (z1 50, z2 51, m 3, alpha 20 deg, x1 -0.5, wheel x2 0, e
 import numpy as np
 import pytest
 
-from geometry.satellite.forming import form_special_hob
-from geometry.satellite.interference import analyse_interference, margin, minimum_thinning
-from geometry.satellite.mesh import EccentricMesh
-from geometry.satellite.separation import unloaded_gaps
-from geometry.satellite.tools import SatelliteDesign
-from geometry.satellite.wheel import CentralWheelDesign, generate_central_wheel, wheel_shift
-from geometry.transverse import inverse_involute, involute
+from ltca.geometry.satellite.forming import form_special_hob
+from ltca.geometry.satellite.interference import analyse_interference, margin, minimum_thinning
+from ltca.geometry.satellite.mesh import EccentricMesh
+from ltca.geometry.satellite.separation import unloaded_gaps
+from ltca.geometry.satellite.tools import SatelliteDesign
+from ltca.geometry.satellite.wheel import CentralWheelDesign, generate_central_wheel, wheel_shift
+from ltca.geometry.transverse import inverse_involute, involute
 
 DEG = np.pi / 180
 A20, M = 20 * DEG, 3.0

@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-import fem.elastic as el
-import fem.loads as loads
-import fem.readout as readout
-from fem.solver import available_methods, factorize
+import ltca.fem.elastic as el
+import ltca.fem.loads as loads
+import ltca.fem.readout as readout
+from ltca.fem.solver import available_methods, factorize
 from test_elastic import _boundary_tri6, _gmsh_tets
 
 E, NU = 210e3, 0.3
@@ -123,7 +123,7 @@ def test_observe_with_fewer_rows_than_loads_solves_for_the_rows(beam, method):
 def test_body_without_solver_frees_the_factor_and_keeps_the_compliance(beam):
     """``BodyCompliance.without_solver``: the back-end factor is released at once (not when the collector gets to
     it), the copy has no mesh, factor or patch, and every figure the contact reads (C, root stress) is the same object."""
-    from fem.compliance import BodyCompliance
+    from ltca.fem.compliance import BodyCompliance
     if "pardiso" not in available_methods():
         pytest.skip("PARDISO (pypardiso) missing: the other back-ends hold their factor in Python")
     K, fixed, F, O = beam

@@ -7,7 +7,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 from conftest import CASES
-from geometry.tip_edge import tip_edge_depth, with_tip_edge
+from ltca.geometry.tip_edge import tip_edge_depth, with_tip_edge
 from ltca.case import parse_case, read_toml
 from ltca.cylindrical.model import build_model
 from ltca.errors import CaseError

@@ -21,7 +21,7 @@ def thin_rim_model():
 
 
 def _coarse(model, member):
-    from fem.solids.full_gear import FullGearSpec, build_full_gear
+    from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear
     p = model.pinion if member == "pinion" else model.gear
     r_bore, web = (model.r_bore1, model.web1) if member == "pinion" else (model.r_bore2, model.web2)
     return build_full_gear(FullGearSpec(p.xy, p.kind, p.side, p.z, r_bore, model.face_width, web=web,
@@ -50,8 +50,8 @@ def test_full_gear_has_every_tooth_bore_and_web(thin_rim_model):
 
 
 def test_whole_deck_writes(thin_rim_model, tmp_path):
-    from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
-    from geometry.pair import rotation_z
+    from ltca.fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
+    from ltca.geometry.pair import rotation_z
     m1, m2 = _coarse(thin_rim_model, "pinion"), _coarse(thin_rim_model, "gear")
     m1.facets["band_0"], m2.facets["band_0"] = m1.facets["flank_0_right"], m2.facets["flank_0_left"]
     deck = CcxDeck(young=206000.0, poisson=0.3, fixed=("gear", "bore"), driven=("pinion", "bore"), moment=-2e5,
@@ -76,9 +76,9 @@ def test_full_gear_is_independent_of_our_body():
 def test_helical_full_gear_is_lofted_on_the_helicoid():
     """Helical C14's pinion (beta 20 deg, b 40 mm): every tooth labelled, the flank vertices of tooth 0 within
     1 um of the transverse outline turned by tan(beta) / r z (measured 0.3 um), over the whole face."""
-    from fem.solids.full_gear import FullGearSpec, build_full_gear
-    from fem.solids.planar import rot2
-    from fem.solids.planar import polyline_distance
+    from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear
+    from ltca.fem.solids.planar import rot2
+    from ltca.fem.solids.planar import polyline_distance
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
     from ltca.verify.whole_gear import twist
@@ -102,7 +102,7 @@ def _frd_block(name: str, rows: dict) -> str:
 
 
 def test_read_nodal_stress_takes_the_last_block_in_voigt_order(tmp_path):
-    from fem.calculix.run import read_nodal_stress
+    from ltca.fem.calculix.run import read_nodal_stress
     frd = tmp_path / "job.frd"
     frd.write_text(_frd_block("DISP", {1: [9.0] * 6}) + _frd_block("STRESS", {1: [1.0] * 6}) +
                    _frd_block("STRESS", {1: [1.0, 2.0, 3.0, 4.0, 5.0, 6.0], 12: [-1e3, 0, 0, 0, 0, 250.5]}))
@@ -115,7 +115,7 @@ def test_read_nodal_stress_takes_the_last_block_in_voigt_order(tmp_path):
 def test_fillet_stress_reads_the_tension_fillets_as_ours(tmp_path):
     """0.05 mm inside the named fillets, |z| <= 0.45 b, largest principal stress, and where; the loaded
     teeth's tension-side fillets are meshed at h_fillet, the other side left."""
-    from fem.solids.full_gear import FullGearSpec, build_full_gear
+    from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear
     from ltca.case import load_case
     from ltca.cylindrical.model import build_model
     from ltca.verify.whole_root import Member, fillet_points, fillet_stress, largest_principal
@@ -195,7 +195,7 @@ def test_fitted_peak_says_where():
     slice centre)."""
     from types import SimpleNamespace
 
-    from fem.solids import ContactLine
+    from ltca.fem.solids import ContactLine
     from ltca.verify.calculix import _fitted_peak
     from ltca.verify.fitted_peak import fitted_peak
     b = 14.0

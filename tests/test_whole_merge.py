@@ -47,7 +47,7 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     """Merging -4.5 deg replaces that position by its run one rung finer than its frozen one, with our figures, and
     extends its ladder (the frozen run before it); the first position's ladder, the other positions and the original
     command stay."""
-    import fem.calculix.run
+    import ltca.fem.calculix.run as ccx_run
     from tools.calculix_refs import merge_whole as whole_merge
     from ltca.verify.whole_gear import WholeResult
 
@@ -58,7 +58,7 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
         root = {m: {"max": 230.0, "per_tooth": {"0": 230.0}, "at": {"z_mm": 0.0}, "surface": {"max": 240.0}}
                 for m in ("pinion", "gear")}
         return WholeResult(roll, 117.5, {0: 5912.0}, 14.7, 1500.0, 2.0, info, root)
-    monkeypatch.setattr(fem.calculix.run, "ccx_path", lambda: "ccx")
+    monkeypatch.setattr(ccx_run, "ccx_path", lambda: "ccx")
     monkeypatch.setattr(whole_merge, "solve_whole", fake)
     monkeypatch.setattr(whole_merge, "ccx_version", lambda: "This is Version 0")
     ref = tmp_path / "ref.json"
@@ -89,7 +89,7 @@ def test_the_check_runs_once_per_position_and_the_freeze_adds_its_ladder(tmp_pat
     """``ltca validate --reference calculix-whole`` runs CalculiX once per position at the base band; the freeze
     script adds the ladder at the first position (``--refine 1 --ladder both``: 1.5, 1, 1/1.5 of the band) and
     writes a reference that records its command, the ladder and our figures (CalculiX replaced by a stand-in)."""
-    import fem.calculix.run
+    import ltca.fem.calculix.run as ccx_run
     from ltca.verify import whole_check
     from ltca.verify.whole_gear import WholeResult
     from tools.calculix_refs import freeze_whole
@@ -102,7 +102,7 @@ def test_the_check_runs_once_per_position_and_the_freeze_adds_its_ladder(tmp_pat
                 "p_flank": 1500.0}
         root = {m: {"max": 230.0, "per_tooth": {"0": 230.0}, "at": {"z_mm": 0.0}} for m in ("pinion", "gear")}
         return WholeResult(roll, 117.5, {0: 5912.0}, 14.7, 1500.0, 2.0, info, root)
-    monkeypatch.setattr(fem.calculix.run, "ccx_path", lambda: "ccx")
+    monkeypatch.setattr(ccx_run, "ccx_path", lambda: "ccx")
     monkeypatch.setattr(whole_check, "solve_whole", fake)
     monkeypatch.setattr(freeze_whole, "solve_whole", fake)
     monkeypatch.setattr(freeze_whole, "ccx_version", lambda: "This is Version 0")

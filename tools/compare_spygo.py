@@ -11,9 +11,9 @@ The pair is the 19/62 spiral bevel pair with a 95 deg shaft angle of SpyGO's exa
 left hand, generated gear); SpyGO designs its blank and settings sheet from those data.  Each variant
 changes the settings sheet of one flank (tilt and swivel, each motion order in turn, a curved pinion blade,
 a formate gear), SpyGO samples the flank at a (z, R) grid of its axial section, and our generator
-(:mod:`geometry.bevel.generation`) is solved at the same (z, R).  The sheet is turned into physical joint
+(:mod:`ltca.geometry.bevel.generation`) is solved at the same (z, R).  The sheet is turned into physical joint
 values with SpyGO's own scaling and sign tables (``DesignData.manage_machine_settings``), then into our
-:class:`geometry.bevel.machine.MachineSettings` by the frame identity below, checked against SpyGO's own
+:class:`ltca.geometry.bevel.machine.MachineSettings` by the frame identity below, checked against SpyGO's own
 forward kinematics at several roll angles before any flank is compared:
 
 * SpyGO's machine x axis is our -z_m (the cradle axis), its y our y_m, its z our x_m; its work (gear) frame
@@ -46,10 +46,10 @@ from unittest import mock
 import numpy as np
 from scipy.optimize import root
 
-from geometry.bevel.cutter import HeadCutter
-from geometry.bevel.generation import solve_axial_points, surface_state
-from geometry.bevel.universal import blade_coordinates
-from geometry.bevel.machine import FlankCut, MachineSettings
+from ltca.geometry.bevel.cutter import HeadCutter
+from ltca.geometry.bevel.generation import solve_axial_points, surface_state
+from ltca.geometry.bevel.universal import blade_coordinates
+from ltca.geometry.bevel.machine import FlankCut, MachineSettings
 
 NOTEBOOK = dict(
     system=dict(HAND="Left", taper="Standard", hypoidOffset=0, gearGenType="generated"),

@@ -8,9 +8,9 @@ surface-to-surface penalty contact (``*CONTACT PAIR, TYPE=SURFACE TO SURFACE``, 
 pressure-overclosure law) joins named slave facet groups to master groups (CalculiX 2.20 keywords;
 G. Dhondt, *CalculiX CrunchiX User's Manual*).
 
-The bodies (with contact-line refinement: :mod:`fem.solids.refinement`; whole gears: :mod:`fem.solids.full_gear`,
-:mod:`fem.solids.bevel_occ`) are meshed by :mod:`fem.solids`, ``ccx`` is run and
-its results read back by :mod:`fem.calculix.run`.
+The bodies (with contact-line refinement: :mod:`ltca.fem.solids.refinement`; whole gears: :mod:`ltca.fem.solids.full_gear`,
+:mod:`ltca.fem.solids.bevel_occ`) are meshed by :mod:`ltca.fem.solids`, ``ccx`` is run and
+its results read back by :mod:`ltca.fem.calculix.run`.
 
 Units: mm, N, MPa, rad. Point arrays are (n, 3).
 """

@@ -1,4 +1,4 @@
-"""Running the CalculiX solver ``ccx`` on a deck of :mod:`fem.calculix.deck` and reading its results back.
+"""Running the CalculiX solver ``ccx`` on a deck of :mod:`ltca.fem.calculix.deck` and reading its results back.
 
 The results read are the rotation of the driven axis (``*NODE PRINT`` of the rotation node), the total
 reaction at the fixed nodes, the total contact force of each pair (``*CONTACT PRINT``, from ``job.dat``)
@@ -140,7 +140,7 @@ def read_nodal_stress(frd: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
 
     CalculiX writes the components SXX, SYY, SZZ, SXY, SYZ, SZX (nodal values: extrapolated from the
     integration points, averaged over the elements at the node); they are returned in the Voigt order
-    xx, yy, zz, yz, xz, xy of :func:`fem.compliance.principal_max`. Empty arrays when there is no block."""
+    xx, yy, zz, yz, xz, xy of :func:`ltca.fem.compliance.principal_max`. Empty arrays when there is no block."""
     rows = _frd_block(frd, "STRESS")
     if not rows:
         return np.zeros(0, int), np.zeros((0, 6))

@@ -1,14 +1,14 @@
 """fem.solids: the solids of the gears, meshed.
 
 Solids of every gear type are built here from geometry records and returned as one mesh record
-(:class:`BodyMesh`, :mod:`fem.solids.mesh_record`: nodes, quadratic tetrahedra, named facet groups) that the
-compliance path (:mod:`fem.compliance`) consumes. Cylindrical gears (spur, helical, external or internal): the
-whole gear body (:class:`GearBodySpec`, :mod:`fem.solids.gear_body`: 360 deg rim, web and hub, held at the bore or
-the outer rim), optionally refined around contact lines (:mod:`fem.solids.refinement`); spiral bevel members
-(:mod:`fem.solids.bevel_body`); the independent whole-gear solids of the CalculiX cross-check
-(:mod:`fem.solids.full_gear`, :mod:`fem.solids.bevel_occ`). The shared gmsh steps (fresh model, size field,
-meshing and read-back) are :mod:`fem.solids.gmsh_mesh`, the plane geometry of transverse sections
-:mod:`fem.solids.planar`.
+(:class:`BodyMesh`, :mod:`ltca.fem.solids.mesh_record`: nodes, quadratic tetrahedra, named facet groups) that the
+compliance path (:mod:`ltca.fem.compliance`) consumes. Cylindrical gears (spur, helical, external or internal): the
+whole gear body (:class:`GearBodySpec`, :mod:`ltca.fem.solids.gear_body`: 360 deg rim, web and hub, held at the bore or
+the outer rim), optionally refined around contact lines (:mod:`ltca.fem.solids.refinement`); spiral bevel members
+(:mod:`ltca.fem.solids.bevel_body`); the independent whole-gear solids of the CalculiX cross-check
+(:mod:`ltca.fem.solids.full_gear`, :mod:`ltca.fem.solids.bevel_occ`). The shared gmsh steps (fresh model, size field,
+meshing and read-back) are :mod:`ltca.fem.solids.gmsh_mesh`, the plane geometry of transverse sections
+:mod:`ltca.fem.solids.planar`.
 
 Imports numpy and gmsh only (and geometry); nothing else of fem, nothing of ltca.
 """

@@ -2,14 +2,14 @@
 
 A bevel tooth has a natural hexahedral parameterisation in the member's axial section: depth fraction t
 (root cone -> face cone), cone distance L (toe -> heel) and, across the tooth, the polar angle between its
-two generated flanks, which share the same axial-section point (Z, rho)(t, L) (:mod:`geometry.bevel.sampling`).
+two generated flanks, which share the same axial-section point (Z, rho)(t, L) (:mod:`ltca.geometry.bevel.sampling`).
 The member is meshed on that map, which needs no boolean operations on spline surfaces and cannot fail on a
 spiral twist:
 
 * **Teeth** (``spec.teeth``, the loaded ones plus a neighbour each side): rows of t from the root cone to the
   face cone (top land), columns of L from the front cone (toe) to the back cone (heel), and across the tooth
   from one flank to the other, clustered at both flanks.  The flank nodes lie on the *exact* generated
-  surfaces (:func:`geometry.bevel.sampling.flank_at`); below the flank grid's lowest row (a small root offset
+  surfaces (:func:`ltca.geometry.bevel.sampling.flank_at`); below the flank grid's lowest row (a small root offset
   above the root cone, where the fillet still makes a fair angle with the root cone) the fillet is continued
   along its tangent down to the root cone (a sliver of height ``root_offset``; stated, not hidden).
 * **Blank** (the whole 360 deg): the root cone down to the member's mounting (``support``: the pinion's
@@ -21,8 +21,8 @@ spiral twist:
 
 Each hexahedron is split into six tetrahedra along its main diagonal (Kuhn), which is conforming across
 neighbours; quadratic (10-node) tetrahedra get straight mid-edge nodes (the elements are subparametric,
-:mod:`fem.elastic`).  Facets (tri6, outward): ``flank_{k}_{concave|convex}``, ``top_{k}``, ``root``, ``toe``,
-``heel``, ``bore``.  Frame: the member's body frame of :mod:`geometry.bevel` (z along the axis, origin at the
+:mod:`ltca.fem.elastic`).  Facets (tri6, outward): ``flank_{k}_{concave|convex}``, ``top_{k}``, ``root``, ``toe``,
+``heel``, ``bore``.  Frame: the member's body frame of :mod:`ltca.geometry.bevel` (z along the axis, origin at the
 pitch apex), mm.  Meshing in a structured map instead of gmsh's unstructured mesher is deliberate: the bevel
 tooth is a topological cube, the map keeps element shape and grading under the spiral twist, and it runs in a
 fraction of a second.
@@ -34,8 +34,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from geometry.bevel.sampling import axial_target, flank_at
-from geometry.flank import Flank
+from ltca.geometry.bevel.sampling import axial_target, flank_at
+from ltca.geometry.flank import Flank
 
 from .mesh_record import BodyMesh, outline_hash
 
@@ -51,7 +51,7 @@ class BevelBodySpec:
     Parameters
     ----------
     concave, convex : Flank
-        The member's generated flanks on the same axial grid (:func:`geometry.bevel.generation.generate_flank`),
+        The member's generated flanks on the same axial grid (:func:`ltca.geometry.bevel.generation.generate_flank`),
         body frame, the grid's lowest row ``root_offset`` above the root cone.
     z : int
         Teeth of the member.
@@ -350,7 +350,7 @@ def _faces(ids2: np.ndarray, a0: int, a1: int, periodic: bool = False) -> np.nda
 
 def _quadratic(X: np.ndarray, tets: np.ndarray, groups: dict, key: str, seconds: float) -> BodyMesh:
     """10-node tetrahedra and 6-node facets with straight mid-edge nodes; facets turned outward."""
-    from fem.elastic import EDGES, TRI_EDGES
+    from ltca.fem.elastic import EDGES, TRI_EDGES
     e = np.sort(tets[:, EDGES].reshape(-1, 2), 1)
     uniq, inv = np.unique(e, axis=0, return_inverse=True)
     mid = len(X) + inv.reshape(-1, 6)

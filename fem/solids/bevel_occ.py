@@ -1,7 +1,7 @@
 """A whole bevel member as an OpenCASCADE solid (gmsh OCC), meshed with contact-refined quadratic tetrahedra.
 
 The independent body of the bevel CalculiX check, built apart from our mapped compliance body
-(:mod:`fem.solids.bevel_body`): a different geometry kernel, topology, mesher and support.
+(:mod:`ltca.fem.solids.bevel_body`): a different geometry kernel, topology, mesher and support.
 
 * **Teeth.** One tooth is lofted (``addThruSections``) through sections of constant cone distance L (each
   section lies on a cone normal to the pitch cone, so the first and last are the front and back cones): in each,
@@ -16,7 +16,7 @@ The independent body of the bevel CalculiX check, built apart from our mapped co
   ones gave a nonpositive Jacobian in a coarse fillet), sized by the distance to the contact zone points ``zone``
   (``h_zone + grow * d``, at most ``h_body``).  The nodes of the anchor-side flanks of ``snap_teeth`` above depth
   fraction ``snap_from`` (the fillet below it is left on its chords) are then moved in polar angle onto the exact
-  generated surface (:func:`geometry.bevel.sampling.flank_at`): the contact surfaces carry no spline or chord
+  generated surface (:func:`ltca.geometry.bevel.sampling.flank_at`): the contact surfaces carry no spline or chord
   error.
 
 Facet groups: ``flank_{k}_{concave|convex}`` for k in ``name_teeth`` (k = tooth index, counter-clockwise about
@@ -33,8 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry.bevel.sampling import flank_at
-from geometry.flank import Flank
+from ltca.geometry.bevel.sampling import flank_at
+from ltca.geometry.flank import Flank
 
 from .gmsh_mesh import extract_mesh, fresh_model
 from .session import gmsh_session

@@ -1,4 +1,4 @@
-"""A full gear with every tooth, built independently of :mod:`fem.solids.gear_body` (the whole-gear check).
+"""A full gear with every tooth, built independently of :mod:`ltca.fem.solids.gear_body` (the whole-gear check).
 
 The reference solid of the whole-gear CalculiX check: the transverse outline of all ``z`` teeth (the
 generated tooth outline rotated into place for each tooth) is one closed curve, the bore is a circular
@@ -13,13 +13,13 @@ circle ``r_bore`` where the housing holds it (the eccentric planetary's central 
 Nothing here is shared with the compliance body of our solver: its own construction (OCC extrusion and
 fragments, not the built-in kernel's sweep), every tooth meshed (none left out), its own size field
 (the teeth in contact at ``h_flank``, every other tooth at ``h_tooth``, the rest graded up to
-``h_body``) and the caller's contact-band size expressions (:func:`fem.solids.refinement.line_size_expression`).
+``h_body``) and the caller's contact-band size expressions (:func:`ltca.fem.solids.refinement.line_size_expression`).
 
 Surfaces are labelled by where they are: ``flank_{k}_{left|right}``, ``fillet_{k}_{left|right}``,
 ``tip_{k}``, ``root``, ``bore`` (internal: ``rim``, the outer cylinder), ``ends`` (z = +-b/2) and ``body_faces``
 (the groove faces of a web).
 Tooth ``k`` (``-z//2 <= k < z - z//2``) is the outline rotated by ``-k 2 pi / z``, as in
-:mod:`fem.solids.mesh_record`. Units mm; points (n, 3); 10-node tetrahedra in the meshio order.
+:mod:`ltca.fem.solids.mesh_record`. Units mm; points (n, 3); 10-node tetrahedra in the meshio order.
 """
 from __future__ import annotations
 
@@ -48,7 +48,7 @@ class FullGearSpec:
     Parameters
     ----------
     outline, kind, side : ndarray
-        One tooth's transverse outline (n, 2) and its codes, as ``geometry.profile.ToothProfile``.
+        One tooth's transverse outline (n, 2) and its codes, as ``ltca.geometry.profile.ToothProfile``.
     z : int
         Number of teeth.
     r_bore : float

@@ -16,9 +16,9 @@ twisted helical gear needs no lofting of transverse sections and meshes in secon
 than the face splits the sweep into axial stacks; the web's volumes outside its width are dropped.
 The 3D mesh is graded from ``h_flank`` at the fine teeth (slope 0.6) up to half the body depth far
 away, so the whole 360 deg ring costs about what a segment did. The fillets whose root stress is read
-(``fillets``) are meshed at ``h_fillet``, graded at slope 1 into the body (:mod:`fem.fillet`).
+(``fillets``) are meshed at ``h_fillet``, graded at slope 1 into the body (:mod:`ltca.fem.fillet`).
 
-Conventions as in :mod:`fem.solids.mesh_record`: points (n, 3) in mm, tooth ``k`` is the outline rotated by
+Conventions as in :mod:`ltca.fem.solids.mesh_record`: points (n, 3) in mm, tooth ``k`` is the outline rotated by
 ``-k 2 pi / z``, 10-node tetrahedra in the meshio order, straight edges (mid-edge nodes at the edge
 midpoints), facets oriented outward and named ``flank_{k}_{left|right}``, ``fillet_{k}_...``,
 ``tip_{k}``, ``root``, ``far_teeth``, ``bore`` (internal: ``rim``), ``ends`` and ``body_faces``
@@ -72,14 +72,14 @@ class GearBodySpec:
         Element size at the fine teeth and far from them (mm).
     h_fillet : float or None
         Element size on the ``fillets`` surfaces (mm), graded like ``h_flank`` into the body: the fillets whose
-        root stress is read (:func:`fem.fillet.fillet_size`). None: ``h_flank``.
+        root stress is read (:func:`ltca.fem.fillet.fillet_size`). None: ``h_flank``.
     fillets : tuple of str
         Facet groups meshed at ``h_fillet``, e.g. ``("fillet_0_right",)``.
     order : int
         1 or 2.
     size_fields : tuple of str
         Extra gmsh ``MathEval`` size expressions in x, y, z (mm), combined by their minimum with the graded
-        sizes: local refinement (:func:`fem.solids.refinement.build_refined_body`).
+        sizes: local refinement (:func:`ltca.fem.solids.refinement.build_refined_body`).
     """
 
     outline: np.ndarray

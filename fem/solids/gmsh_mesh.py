@@ -1,11 +1,11 @@
-"""Meshing of a labelled gmsh model into a :class:`fem.solids.mesh_record.BodyMesh`: a fresh model with fixed
+"""Meshing of a labelled gmsh model into a :class:`ltca.fem.solids.mesh_record.BodyMesh`: a fresh model with fixed
 options, the background size field, physical groups, generation and the read-back of nodes, tetrahedra (meshio
 order) and outward-oriented named facets.
 
-The shared gmsh steps of the solid builders (:mod:`fem.solids.gear_body`, :mod:`fem.solids.full_gear`,
-:mod:`fem.solids.bevel_occ`); each builds and labels its own CAD. The gmsh calls run in a fixed order with fixed
+The shared gmsh steps of the solid builders (:mod:`ltca.fem.solids.gear_body`, :mod:`ltca.fem.solids.full_gear`,
+:mod:`ltca.fem.solids.bevel_occ`); each builds and labels its own CAD. The gmsh calls run in a fixed order with fixed
 numbers: the mesh, and any deck written from it, is bit-identical for one spec. gmsh must be initialised
-(:func:`fem.solids.session.gmsh_session`).
+(:func:`ltca.fem.solids.session.gmsh_session`).
 """
 from __future__ import annotations
 

@@ -1,15 +1,15 @@
 """The mesh record of every meshed body: nodes, quadratic tetrahedra, named boundary facets.
 
-Every solid builder of :mod:`fem.solids` (the whole cylindrical gear body, :mod:`fem.solids.gear_body`; the
-bevel members, :mod:`fem.solids.bevel_body` and :mod:`fem.solids.bevel_occ`; the whole gears of the CalculiX
-cross-check, :mod:`fem.solids.full_gear`) returns a :class:`BodyMesh`; the compliance path (:mod:`fem.compliance`),
-the mesh cache (:mod:`fem.solids.cache`) and the CalculiX deck writer (:mod:`fem.calculix.deck`) read it.
+Every solid builder of :mod:`ltca.fem.solids` (the whole cylindrical gear body, :mod:`ltca.fem.solids.gear_body`; the
+bevel members, :mod:`ltca.fem.solids.bevel_body` and :mod:`ltca.fem.solids.bevel_occ`; the whole gears of the CalculiX
+cross-check, :mod:`ltca.fem.solids.full_gear`) returns a :class:`BodyMesh`; the compliance path (:mod:`ltca.fem.compliance`),
+the mesh cache (:mod:`ltca.fem.solids.cache`) and the CalculiX deck writer (:mod:`ltca.fem.calculix.deck`) read it.
 
 Conventions
 -----------
-* Points are (n, 3) with xyz on the last axis (see ``geometry.flank``); units mm, rad.
+* Points are (n, 3) with xyz on the last axis (see ``ltca.geometry.flank``); units mm, rad.
 * ``tets`` use the meshio / scikit-fem / CalculiX order of the 10-node tetrahedron
-  (mid-edge nodes 01, 12, 20, 03, 13, 23). gmsh's own order swaps the last two; :mod:`fem.solids.gmsh_mesh`
+  (mid-edge nodes 01, 12, 20, 03, 13, 23). gmsh's own order swaps the last two; :mod:`ltca.fem.solids.gmsh_mesh`
   converts it.
 * Elements are second order with straight edges (``Mesh.SecondOrderLinear = 1``): the mid-edge nodes
   are the edge midpoints, so every element map is affine. Corner nodes lie on the CAD surfaces.
@@ -26,7 +26,7 @@ __all__ = ["BodyMesh", "outline_hash"]
 
 @dataclass(frozen=True)
 class BodyMesh:
-    """A meshed solid: one gear body (or any body the solid builders of :mod:`fem.solids` make).
+    """A meshed solid: one gear body (or any body the solid builders of :mod:`ltca.fem.solids` make).
 
     Attributes
     ----------

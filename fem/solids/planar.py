@@ -1,8 +1,8 @@
 """Plane geometry of transverse sections: rotation about the axis and distances to polylines (mm, rad).
 
 The solid builders name each CAD surface by the transverse curve it was swept from: a surface's mid-point,
-rotated back into the section, is matched to the nearest curve (:mod:`fem.solids.gear_body`,
-:mod:`fem.solids.full_gear`).
+rotated back into the section, is matched to the nearest curve (:mod:`ltca.fem.solids.gear_body`,
+:mod:`ltca.fem.solids.full_gear`).
 """
 from __future__ import annotations
 

@@ -1,9 +1,9 @@
 """Meshing of a gear body with contact-line refinement, and the facets near those lines.
 
-:func:`build_refined_body` meshes a whole gear body like :func:`fem.solids.gear_body.build_gear_body` with an extra
+:func:`build_refined_body` meshes a whole gear body like :func:`ltca.fem.solids.gear_body.build_gear_body` with an extra
 size field: ``h_contact`` in a band around given line segments on the flank, growing with the distance across
 the band and with the depth below it. :func:`facets_near_lines` keeps the facets of named groups near the
-lines (the contact surfaces of a CalculiX deck, :mod:`fem.calculix.deck`).
+lines (the contact surfaces of a CalculiX deck, :mod:`ltca.fem.calculix.deck`).
 
 Units: mm. Point arrays are (n, 3).
 """

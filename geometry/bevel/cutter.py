@@ -83,7 +83,7 @@ class HeadCutter:
     part : str
         ``"whole"`` (the blade), or ``"straight"``: its straight profile continued past the tangency with the
         edge radius, for every u (the whole blade is that line for u >= 0). The straight part generates a smooth
-        branch of the flank, which :class:`geometry.bevel.surface_table.SurfaceTable` tabulates. For a curved
+        branch of the flank, which :class:`ltca.geometry.bevel.surface_table.SurfaceTable` tabulates. For a curved
         blade ``"straight"`` is its circular arc continued likewise.
     profile_radius : float
         rho_b, mm, > 0: radius of a curved blade (centre on the work side); ``inf`` (default) a straight blade.

@@ -1,12 +1,12 @@
 """Three-control-point design of the pinion (Cao et al. 2008) and the blank-offset redesign.
 
-Control points: M0 (phi1 = 0, the mean contact point of :mod:`geometry.bevel.synthesis`) and M1, M2 at the
+Control points: M0 (phi1 = 0, the mean contact point of :mod:`ltca.geometry.bevel.synthesis`) and M1, M2 at the
 transfer points phi1 = -+pi/z1, one mesh cycle apart.  The parabola TE = (m21/2) phi1^2 puts the gear at
 TE(M1) = TE(M2) = -te_magnitude.  Our scheme, equivalent in its unknowns to the paper's but solved on the
 generated surfaces rather than on the head-cutter surfaces:
 
 * inner problem, for given modified-roll coefficients (C, D): the local synthesis at M0
-  (:func:`geometry.bevel.synthesis.local_synthesis`) gives point radius, Sr1, q1, XG1, Em1, XB1, ratio of
+  (:func:`ltca.geometry.bevel.synthesis.local_synthesis`) gives point radius, Sr1, q1, XG1, Em1, XB1, ratio of
   roll and blade angle so that eta2, m21 and the ellipse axis hold exactly at M0 (C enters the second
   order through the roll acceleration, D does not);
 * outer problem: Newton on (C, D) so that the continuous-tangency TCA of the generated pair passes
@@ -43,7 +43,7 @@ def path_line(L: np.ndarray, Rn: np.ndarray, blank: BevelBlank) -> tuple[float, 
     Parameters
     ----------
     L, Rn : ndarray (m,)
-        The points' coordinates in the gear axial section, mm (:func:`geometry.bevel.tca.tca`'s ``gear_L``,
+        The points' coordinates in the gear axial section, mm (:func:`ltca.geometry.bevel.tca.tca`'s ``gear_L``,
         ``gear_Rn``, or the separation field's).
     blank : BevelBlank
 

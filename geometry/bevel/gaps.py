@@ -1,6 +1,6 @@
 """Gaps between a bevel pinion flank and the gear at any pinion points and angles: the input of the LTCA.
 
-The separation field (:mod:`geometry.bevel.separation`) evaluates the gap of the pinion *grid* to the gear;
+The separation field (:mod:`ltca.geometry.bevel.separation`) evaluates the gap of the pinion *grid* to the gear;
 the loaded analysis needs it at its own contact cells, anywhere on the pinion flank, for any tooth pair.  A
 pinion point (depth fraction t, cone distance L) of tooth 0 at pinion angle phi1 is carried into the gear
 body frame with the gear at its kinematic angle phi2_0 - (z1/z2) phi1; the gear rotation g (rad, positive
@@ -10,7 +10,7 @@ normal gap is g v to first order.  Tooth pair j is tooth 0 at phi1 + j 2 pi / z1
 +j pitches and the gear tooth by -j gear pitches in their body frames).
 
 Assembly errors E, P, G and the shaft angle error enter through the mesh frames
-(:func:`geometry.bevel.tca.mesh_frames`), as in the TCA.
+(:func:`ltca.geometry.bevel.tca.mesh_frames`), as in the TCA.
 """
 from __future__ import annotations
 
@@ -26,8 +26,8 @@ __all__ = ["PointGaps", "MeshGaps", "depth_fraction"]
 
 def depth_fraction(blank, member: str, off: float, L: np.ndarray, Rn: np.ndarray) -> np.ndarray:
     """Depth fraction of axial-section points (L, Rn) (mm) on ``member``'s flank grid whose lowest row lies ``off``
-    (mm) above the root cone and whose top row is the face cone (:func:`geometry.bevel.generation.axial_grid`);
-    ``blank`` is the pair's :class:`geometry.bevel.blank.BevelBlank`."""
+    (mm) above the root cone and whose top row is the face cone (:func:`ltca.geometry.bevel.generation.axial_grid`);
+    ``blank`` is the pair's :class:`ltca.geometry.bevel.blank.BevelBlank`."""
     root, face = blank.cones(member, L)
     root = root + off
     return (Rn - root) / (face - root)
@@ -72,7 +72,7 @@ class MeshGaps:
         Newton tolerance of the surface points, mm (1e-9: a thousandth of a micrometre, ample for contact gaps;
         the TCA's 1e-11 costs a Newton step more).
     table : float or None
-        Serve both flanks from a :class:`~geometry.bevel.surface_table.SurfaceTable` within this many mm of the
+        Serve both flanks from a :class:`~ltca.geometry.bevel.surface_table.SurfaceTable` within this many mm of the
         exact surface (default 1e-7 mm; exact where the table cannot); None: every point solved exactly.
     """
 

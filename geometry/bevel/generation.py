@@ -1,13 +1,13 @@
 """Generated tooth surfaces of face-milled spiral bevel gears (cradle model, equation of meshing).
 
 A work point is the image of a blade point (u, theta) at cradle angle psi (frames in
-:mod:`geometry.bevel.machine`).  The generated surface is the envelope of the blade surfaces, selected by
+:mod:`ltca.geometry.bevel.machine`).  The generated surface is the envelope of the blade surfaces, selected by
 the equation of meshing (Litvin & Fuentes 2004, sec. 6.1, 20.5):
 
     f(u, theta, psi) = n_m . v_m = 0,    v_m = z_m x r_m - phi'(psi) k x (r_m - O_w),
 
 the normal times the velocity of the blade point relative to the work, per unit cradle rotation (mm).
-On the universal machine (:mod:`geometry.bevel.machine`) the cutter centre, its tilt and the work origin move
+On the universal machine (:mod:`ltca.geometry.bevel.machine`) the cutter centre, its tilt and the work origin move
 with psi too, and their derivatives enter the relative velocity (Litvin & Fuentes 2004, sec. 6.1; Fan, J. Mech.
 Des. 129 (2007) 31-37):
 
@@ -241,7 +241,7 @@ def normal_thickness(cut: MemberCut, blank: BevelBlank) -> float:
     """Mean normal circular tooth thickness of a generated member, mm.
 
     Measured on the pitch cone at the mean cone distance: transverse arc (2 pi / z - slot angle) rho_m
-    times cos(beta_m), the definition used by :func:`geometry.bevel.blank.design_blank`.
+    times cos(beta_m), the definition used by :func:`ltca.geometry.bevel.blank.design_blank`.
     """
     cc, cv = _mean_points(cut, blank)
     a_cc = np.arctan2(cc.r_w[0, 1], cc.r_w[0, 0])
@@ -255,7 +255,7 @@ def normal_thickness(cut: MemberCut, blank: BevelBlank) -> float:
 
 
 def standard_gear_cut(blank: BevelBlank, edge_radius: float | None = None, tol: float = 1e-5) -> MemberCut:
-    """Standard gear settings (:func:`geometry.bevel.machine.gear_settings`) with the point width refined by
+    """Standard gear settings (:func:`ltca.geometry.bevel.machine.gear_settings`) with the point width refined by
     secant steps until the generated mean normal thickness equals the design value within ``tol`` mm."""
     target = blank.gear.mean_normal_thickness
     cut = gear_settings(blank, edge_radius=edge_radius)

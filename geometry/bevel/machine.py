@@ -6,8 +6,8 @@ Theory*, 2nd ed. 2004, ch. 20-21, and Litvin NASA CR-4342, 1990, with our own si
 * S_m, machine (fixed): z_m along the cradle axis, origin at the machine centre in the cutter tip plane.
 * S_p, cradle: rotated by the cradle angle psi about z_m.
 * S_c, cutter: origin at the cutter centre, at ``Sr (cos q, sin q, 0)`` in S_p; axes parallel to S_p
-  (no tilt/swivel).  See :mod:`geometry.bevel.cutter` for the blade surface.
-* S_w, work body frame (gear frame of :mod:`geometry.flank`: origin at the pitch apex, z along the axis
+  (no tilt/swivel).  See :mod:`ltca.geometry.bevel.cutter` for the blade surface.
+* S_w, work body frame (gear frame of :mod:`ltca.geometry.flank`: origin at the pitch apex, z along the axis
   towards the back): at roll phi = 0 its axes are z_w = k = (cos gm, 0, sin gm), y_w = y_m,
   x_w = y_w x z_w, with gm the machine root angle; its origin is
   ``O_w = Em y_m + XB z_m + XG k`` (blank offset, sliding base, machine centre to back).  The work body lies on
@@ -331,7 +331,7 @@ def gear_settings(blank: BevelBlank, point_width: float | None = None, edge_radi
     sliding base), no offsets, ratio of roll cos(g - gm)/sin(g), cutter of mean radius r_c centred so that the
     tooth trace through the mean pitch point has the spiral angle beta_m.  Point width (tip-plane slot
     width) W = p_mn - s_2 - 2 b_m2 tan(alpha_n) gives the design thickness to first order (crown-gear
-    normal section); :func:`geometry.bevel.generation.standard_gear_cut` refines it on the generated surface.
+    normal section); :func:`ltca.geometry.bevel.generation.standard_gear_cut` refines it on the generated surface.
     """
     d, g = blank.data, blank.gear
     alpha = d.pressure_angle

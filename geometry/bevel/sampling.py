@@ -1,16 +1,16 @@
 """Exact points of a generated bevel flank anywhere in its axial section, from its Flank record.
 
-A flank from :func:`geometry.bevel.generation.generate_flank` is gridded in the axial section of the member:
+A flank from :func:`ltca.geometry.bevel.generation.generate_flank` is gridded in the axial section of the member:
 node (i, j) sits at depth fraction t_i and cone distance L_j, and its axial position Z and radius rho are
 *bilinear* in (t, L) (``axial_grid``: Rn = root(L) + off + t (face(L) - root(L) - off), both cone lines
 linear in L; Z = L cos g - Rn sin g, rho = L sin g + Rn cos g).  So any (t, L), also slightly outside the
 grid, has a well-defined axial-section target, and the generated point there is solved with the same Newton
-(:func:`geometry.bevel.generation.solve_axial_points`) from the grid's (u, theta, psi) interpolated or
+(:func:`ltca.geometry.bevel.generation.solve_axial_points`) from the grid's (u, theta, psi) interpolated or
 extrapolated linearly.  This is how solids and checks get points of the exact surface between grid nodes:
 a mesher places vertices by a spline through these points; a test measures them against it.
 
 Also here: the depth fraction where the blade's edge radius (fillet generator, blade parameter u < 0)
-meets its straight part (u = 0), per column: the fillet / flank boundary (:mod:`geometry.bevel.cutter`).
+meets its straight part (u = 0), per column: the fillet / flank boundary (:mod:`ltca.geometry.bevel.cutter`).
 """
 from __future__ import annotations
 

@@ -4,7 +4,7 @@ At each pinion angle phi1 the gear is first held at its kinematic position phi2_
 For every point p of one member's flank grid (trimmed by its own blank) the gap is the rotation of the
 OTHER member about its own axis that brings its generated surface onto p: in the other member's body frame,
 p has axial-section coordinates (Z, rho) and polar angle a_p; the other surface is solved exactly at the same
-(Z, rho) (Newton on the equation of meshing, :func:`geometry.bevel.generation.solve_axial_points`), polar angle
+(Z, rho) (Newton on the equation of meshing, :func:`ltca.geometry.bevel.generation.solve_axial_points`), polar angle
 a_s, and the rotation is a_p - a_s, wrapped to the tooth pitch and signed so that it is positive when the
 flanks are apart (the surface normal, out of the material, tells which way the member must turn to close).
 Points whose (Z, rho) fall outside the other member's flank (face and root cones, toe and heel) do not count.
@@ -101,7 +101,7 @@ class _Member:
         return (t >= -tol) & (t <= 1 + tol) & (L >= self.Ai - tol) & (L <= self.A0 + tol)
 
     def use_table(self, tol: float = 1e-7) -> None:
-        """Serve :meth:`surface` from a :class:`~geometry.bevel.surface_table.SurfaceTable` of this flank (built
+        """Serve :meth:`surface` from a :class:`~ltca.geometry.bevel.surface_table.SurfaceTable` of this flank (built
         once per flank, remembered with it): within ``tol`` mm of the exact surface, exact where it is not."""
         key = ("table", id(self.fc), self.name, self.A0, self.Ai, float(self.off), self.tol, float(tol))
         hit = _FLANKS.get(key)
@@ -115,7 +115,7 @@ class _Member:
         self.table = hit[1]
 
     def _branches(self):
-        """The flank's smooth branches (:class:`~geometry.bevel.surface_table.SurfaceTable`): the surfaces the
+        """The flank's smooth branches (:class:`~ltca.geometry.bevel.surface_table.SurfaceTable`): the surfaces the
         blade's straight part and its edge circle generate, each continued past their tangency; their validity
         fields w (mm) are the blade parameter u's distance inside the part (straight: u >= 0; arc:
         ``u_min`` <= u < 0)."""
@@ -204,13 +204,13 @@ class SeparationResult:
     """Result of :func:`separation_tca` for one flank pair.
 
     phi1 : (m,) pinion angles over ``cycles`` mesh cycles, rad;  te : (m,) TE of the driven gear, rad
-    (same definition as :func:`geometry.bevel.tca.tca`, zero at phi1 = 0);  pairs : (k,) tooth-pair offsets j
+    (same definition as :func:`ltca.geometry.bevel.tca.tca`, zero at phi1 = 0);  pairs : (k,) tooth-pair offsets j
     (pinion tooth j is at phi1 + j 2 pi / z1);  pinion_gap : (m, k, nu, nv) normal gap of the pinion grid
     points to the gear after the gear has closed the smallest gap, mm (inf off the gear flank);
     gear_gap : (m, k, nu2, nv2) the same for the gear grid points against the pinion;  gear_L, gear_Rn :
     (m,) contact point in the gear axial section, mm;  where : (m,) location of the contact
     (``"interior"`` or ``"<member> <edge>"``, edges :data:`EDGES`);  pinion, gear : the two grid flanks
-    (:class:`geometry.flank.Flank`, body frames);  pinion_to_gear_L/Rn : (m, k, nu, nv) the pinion grid
+    (:class:`ltca.geometry.flank.Flank`, body frames);  pinion_to_gear_L/Rn : (m, k, nu, nv) the pinion grid
     points in the gear axial section;  delta : elastic approach of the contact zone, mm;  ease_off :
     (nu, nv) pinion ease-off, mm (:func:`_ease_off`; NaN where the point never passes over the gear flank).
     """

@@ -7,7 +7,7 @@ centre to back, sliding base, ratio of roll and the modified roll with Gleason's
 the cradle roll (k = 1..6; the sheet's factorial scaling: the setting is ``x0 + sum_k a_k psi^k / k!``),
 generated or formate; the cutter's blade, point radius, blade angle, edge radius and, for a curved blade, its
 profile radius, and a blended toprem and flankrem (depth and radius).  :func:`flank_sheet` and :func:`flank_from_sheet` are exact inverses up to the degree <-> rad
-conversion (a relative 1e-16).  Frames and signs are those of :mod:`geometry.bevel.machine`.
+conversion (a relative 1e-16).  Frames and signs are those of :mod:`ltca.geometry.bevel.machine`.
 """
 from __future__ import annotations
 

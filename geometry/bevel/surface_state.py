@@ -1,6 +1,6 @@
 """The state of a generated flank point (position, normal, the equation of meshing and its derivatives) and the
-small vector helpers that the cradle generators (:mod:`geometry.bevel.generation`, the universal machine
-:mod:`geometry.bevel.universal`) share. Points and vectors are (..., 3) arrays, mm."""
+small vector helpers that the cradle generators (:mod:`ltca.geometry.bevel.generation`, the universal machine
+:mod:`ltca.geometry.bevel.universal`) share. Points and vectors are (..., 3) arrays, mm."""
 from __future__ import annotations
 
 from dataclasses import dataclass

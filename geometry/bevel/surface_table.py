@@ -2,7 +2,7 @@
 
 The LTCA's gap evaluator asks a flank for its point and normal at flank coordinates (t, L) (depth fraction,
 cone distance) thousands of times per mesh cycle, in small batches; each exact answer is a Newton solve of the
-equation of meshing (:func:`geometry.bevel.generation.solve_axial_points`), about a dozen blade evaluations. The
+equation of meshing (:func:`ltca.geometry.bevel.generation.solve_axial_points`), about a dozen blade evaluations. The
 flank does not change with the torque, the mounting errors or the position, so it is solved once on a node grid
 and interpolated: the polar angle a(t, L) of the point in its axial section (Z, rho)(t, L) -- which puts the
 point exactly in that section, as the exact solve does -- and the unit normal, by bicubic splines

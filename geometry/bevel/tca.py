@@ -3,7 +3,7 @@
 Mesh frame S_h: origin at the common pitch apex; the mean pitch points of both members lie on +x_h at
 the reference position.  Gear body frame: z2 = (cos g2, 0, sin g2), y2 = y_h; pinion body frame:
 z1 = (cos g1', 0, -sin g1'), y1 = -y_h, with g1' = Sigma + dSigma - g2 (this is the gear machine frame
-turned so that both generating crown gears coincide; see :func:`geometry.bevel.machine.conjugate_pinion_settings`).
+turned so that both generating crown gears coincide; see :func:`ltca.geometry.bevel.machine.conjugate_pinion_settings`).
 Assembly errors: gear axial G along z2, pinion axial P along z1, offset E along y_h, shaft angle dSigma.
 Members turn by phi1 about z1 and phi2 about z2; in mesh phi2 ~ -(z1/z2) phi1.
 

@@ -1,9 +1,9 @@
 """Generated surface on the universal face-milling machine: motions, tilt and swivel, formate members.
 
-:func:`universal_state` is :func:`geometry.bevel.generation.surface_state` for settings that are not the basic
-cradle (:attr:`geometry.bevel.machine.MachineSettings.is_basic`); the equation of meshing with the derivative
-terms of the relative velocity is given in :mod:`geometry.bevel.generation`.  The tilt rotation is Rodrigues'
-formula about the tilt axis of :func:`geometry.bevel.machine.tilt_rotation`.
+:func:`universal_state` is :func:`ltca.geometry.bevel.generation.surface_state` for settings that are not the basic
+cradle (:attr:`ltca.geometry.bevel.machine.MachineSettings.is_basic`); the equation of meshing with the derivative
+terms of the relative velocity is given in :mod:`ltca.geometry.bevel.generation`.  The tilt rotation is Rodrigues'
+formula about the tilt axis of :func:`ltca.geometry.bevel.machine.tilt_rotation`.
 """
 from __future__ import annotations
 

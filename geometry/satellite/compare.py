@@ -3,7 +3,7 @@
 Profile deviation of a method from (c): at points of the (c) right-half outline (fillet, involute, tip
 corner), the distance along the (c) outline normal to the other method's outline, in um, positive where
 the other method leaves MORE metal than (c): the root of the signed distance ``f(d)`` of ``p + d n`` to the
-other outline (:class:`geometry.outline.GearOutline`) nearest to d = 0 (``p`` a (c) point, ``n`` its
+other outline (:class:`ltca.geometry.outline.GearOutline`) nearest to d = 0 (``p`` a (c) point, ``n`` its
 outward normal), bracketed on a grid and bisected; NaN where the normal line misses the other outline.
 """
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Cutting the satellite by the three methods of Kapitonov et al. (2014); each gives a
-:class:`~geometry.profile.ToothProfile`.
+:class:`~ltca.geometry.profile.ToothProfile`.
 
-* (c) ``special_hob``: one rack envelope (:func:`geometry.involute.generate_by_rack`) with the thickened
+* (c) ``special_hob``: one rack envelope (:func:`ltca.geometry.involute.generate_by_rack`) with the thickened
   rack, i.e. the ISO 21771 thickness allowance ``A = k m`` (:class:`SpecialHob`).
 * (a) ``hob_three_pass``: three rack envelopes with the standard rack at the design shift, the second and
   third with the rack moved by ``+t`` and ``-t`` along its pitch line. A rack moved by t generates the same
@@ -12,7 +12,7 @@
   centre line to the plunge, is removed at every tooth space of the blank (tip circle of the design).
 * ``hob``: one pass of the standard hob, no thinning (the reference of the interference study).
 
-Frame and units as in :mod:`geometry.profile` (tooth on +y, mm, rad).
+Frame and units as in :mod:`ltca.geometry.profile` (tooth on +y, mm, rad).
 """
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """Interference of the satellite and the central wheel over the whole revolution, and the thinning that ends it.
 
-Kinematic reference (:mod:`geometry.satellite.mesh`): for each direction d the satellite sits where the
+Kinematic reference (:mod:`ltca.geometry.satellite.mesh`): for each direction d the satellite sits where the
 mesh pair's involutes touch on that side (``delta = -d beta``). The pair is interference-free when, at every
 position of one mesh cycle (which covers every tooth pair of the revolution), both these placements are
 free of overlap, i.e. lie in the exact free window ``[drive, coast]`` of :meth:`EccentricMesh.window`:
@@ -11,7 +11,7 @@ free of overlap, i.e. lie in the exact free window ``[drive, coast]`` of :meth:`
 makes one of the terms negative). Reported in um along the line of action (times r_b1).
 
 Where and how deep, at the two nominal placements, by the partners of each penetrating point (outline
-kinds, :class:`geometry.outline.OutlineQuery`), true normal depth in um:
+kinds, :class:`ltca.geometry.outline.OutlineQuery`), true normal depth in um:
 
 * ``involute``: flank into flank: the tooth does not fit the space at this centre distance (backlash < 0);
 * ``tip``: a tip corner or tip land of one member into the other's involute flank;

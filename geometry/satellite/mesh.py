@@ -1,7 +1,7 @@
 """Rigid kinematics of the satellite inside the central wheel, and the distances between their outlines.
 
 Frame (transverse, spur): satellite centre O1 at the origin, wheel centre O2 at (0, -e), so the mesh is on
-+y (as :mod:`geometry.pair` places an internal pair). Angles counter-clockwise positive. At position
++y (as :mod:`ltca.geometry.pair` places an internal pair). Angles counter-clockwise positive. At position
 ``phi`` (rad of satellite rotation, clockwise) the satellite is turned by ``-phi + delta`` and the wheel by
 ``-phi z1/z2 + pi/z2`` (a wheel SPACE on +y at phi = 0; both turn the same way, as an internal pair does).
 ``delta = 0`` is the symmetric placement (satellite tooth 0 centred in the wheel space on the line of
@@ -14,8 +14,8 @@ The configuration repeats after one satellite pitch 2 pi / z1 with every tooth l
 and all z1 satellite teeth are evaluated at every position, so one pitch of ``phi`` covers every tooth pair
 of the whole revolution.
 
-Both outlines are sampled (:func:`geometry.outline.resample_outline`, corners kept) and each point is
-measured against the other gear's whole outline (:class:`geometry.outline.GearOutline`). ``rate`` is how
+Both outlines are sampled (:func:`ltca.geometry.outline.resample_outline`, corners kept) and each point is
+measured against the other gear's whole outline (:class:`ltca.geometry.outline.GearOutline`). ``rate`` is how
 fast (mm per rad of satellite rotation in the closing sense ``d``, the wheel held) the distance would
 shrink, so ``distance / rate`` is the rotation that closes it (first order).
 """

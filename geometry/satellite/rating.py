@@ -9,7 +9,7 @@ critical chord s_Fn and the fillet radius rho_F there; the load acts at the tip 
 normal (the whole F_t on one tooth: ISO's "load at the tip", Y_F = 6 (h_Fe/m) cos(alpha_Fen) / ((s_Fn/m)^2
 cos(alpha_n)), Y_S = (1.2 + 0.13 L) q_s^(1 / (1.21 + 2.3 / L)), L = s_Fn / h_Fe, q_s = s_Fn / (2 rho_F),
 ISO 6336-3:2006 eq. 7-8, 13-15 and 30-31). That is conservative here: the internal mesh shares the load among
-several pairs (:mod:`geometry.satellite.separation`), which a single-pair rating ignores; the LTCA gives the
+several pairs (:mod:`ltca.geometry.satellite.separation`), which a single-pair rating ignores; the LTCA gives the
 real root stress. Y_beta = 1 (spur), Y_B = 1 (rim thick: s_R / h_t > 1.2), Y_DT = 1 (it applies only to
 epsilon_alpha n >= 2 with ISO accuracy grade <= 4; a cut 40Kh satellite is grade 7-8).
 

@@ -1,6 +1,6 @@
 """Unloaded separations of every satellite/wheel tooth pair over the mesh cycle, both directions.
 
-For each position of one mesh cycle (which covers all pairs of the revolution, :mod:`geometry.satellite.mesh`)
+For each position of one mesh cycle (which covers all pairs of the revolution, :mod:`ltca.geometry.satellite.mesh`)
 the satellite is turned, the wheel held, until its first contact in the direction (clockwise: right flanks,
 ``+1``; counter-clockwise: left flanks, ``-1``); the separation of pair j is the further rotation until
 satellite tooth j touches too, given as its arc on the satellite's base circle (um), i.e. the gap along the

@@ -9,7 +9,7 @@ teeth thinned so that (Eq. 3)
 s the transverse tooth thickness on the reference circle. The tools: (a) a standard hob in three passes,
 (b) a disk module cutter by form copying plunged to a shift coefficient -1.3, (c) a special hob whose rack
 teeth are thickened (Eq. 4). All records are frozen and validate on construction (``ValueError`` naming the
-field, its value and the allowed range, via :func:`geometry.gear_blank._check`). Units mm, rad; the
+field, its value and the allowed range, via :func:`ltca.geometry.gear_blank._check`). Units mm, rad; the
 coefficients ``*_coef`` are per module.
 
 Eq. 4 of the seed (``s_rack = pi m/2 + 2 x m tan(alpha) + k m``) is checked in :func:`eq4_rack_thickness`:

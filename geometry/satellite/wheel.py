@@ -13,7 +13,7 @@ With ``a = e = m`` the first equation fixes alpha_w from the tooth difference al
   unthinned satellite). It does not work: the satellite teeth drift against the wheel spaces by
   ``psi/pi - (e z2 / (pi z1)) sin(psi)`` pitches at the angle psi from the mesh, a quarter pitch near
   100 deg where the teeth are still 2.5 mm deep in engagement; the pair jams for every thinning that leaves
-  a tooth (:mod:`geometry.satellite.interference`: free play -3.6 mm at k = 0, -1.9 mm at k = 0.6).
+  a tooth (:mod:`ltca.geometry.satellite.interference`: free play -3.6 mm at k = 0, -1.9 mm at k = 0.6).
 * ``z2 - z1 = 1`` (the eccentric reducer's case): cos(alpha_w) = cos(alpha)/2, alpha_w = 61.98 deg, and zero
   backlash for ``x2 + k/(2 tan alpha) = x1 + 1.0746 = 0.5746``: x2 = 0.5746 for the unthinned satellite,
   -0.2497 for the paper's k = 0.6. The mesh works (contact at about +-40 deg from the line of centres,

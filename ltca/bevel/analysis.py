@@ -9,11 +9,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geometry.bevel.blank import design_blank
-from geometry.bevel.design import synthesize_pinion
-from geometry.bevel.generation import standard_gear_cut
-from geometry.bevel.tca import RAD_PER_ARCSEC as ARCSEC
-from geometry.bevel.tca import Assembly, BevelPair
+from ltca.geometry.bevel.blank import design_blank
+from ltca.geometry.bevel.design import synthesize_pinion
+from ltca.geometry.bevel.generation import standard_gear_cut
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC as ARCSEC
+from ltca.geometry.bevel.tca import Assembly, BevelPair
 
 from ..errors import CaseError
 from ..validation import DesignError

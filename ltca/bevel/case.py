@@ -1,7 +1,7 @@
 """Spiral bevel case: read and validate a TOML case with a [bevel] table (basic data, flank targets, blank offset).
 
 Instead of the targets a case may give each member's settings sheet per flank, ``[bevel.settings.gear.concave]``
-and so on (keys of :mod:`geometry.bevel.sheet`): the pair is then cut as given, with no synthesis.
+and so on (keys of :mod:`ltca.geometry.bevel.sheet`): the pair is then cut as given, with no synthesis.
 
 Case units: mm, deg, arcsec; converted once here to mm and rad.  Mistakes raise
 :class:`ltca.errors.CaseError` naming the field.
@@ -13,10 +13,10 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry.bevel.blank import BevelBasicData, design_blank
-from geometry.bevel.sheet import member_from_sheet
-from geometry.bevel.synthesis import FlankTarget
-from geometry.bevel.tca import RAD_PER_ARCSEC
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.sheet import member_from_sheet
+from ltca.geometry.bevel.synthesis import FlankTarget
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
 from ..validation import DesignError, Int, List, Num, OneOrList, Str, Table, check_kind, check_table
@@ -129,7 +129,7 @@ class BevelCase:
     ``targets`` maps the pinion side ("concave": working, "convex": coast) to its synthesis target; ``cuts``
     ({"gear", "pinion"} -> MemberCut) holds the pair as its settings sheets cut it, when the case gives them;
     ``assembly`` holds the errors E, P, G (mm) and d_sigma (rad) as keyword arguments of
-    :class:`geometry.bevel.tca.Assembly`."""
+    :class:`ltca.geometry.bevel.tca.Assembly`."""
     name: str
     basic: BevelBasicData
     targets: dict

@@ -6,7 +6,7 @@ the normal gap's Hessian there, in an orthonormal frame of the tangent plane, gi
 curvatures and directions (the quadratic term of the separation: lambda_1 <= lambda_2, 1/mm).  The cells are a
 rectangular lattice in that frame, centred on the first-contact point (so that the unloaded TE is met exactly
 as the load vanishes), covering the ellipse where the separation stays below a window approach: a multiple of
-the elliptic-Hertz approach (:func:`fem.hertz.elliptic_hertz`) of the whole load carried by this one pair.  The
+the elliptic-Hertz approach (:func:`ltca.fem.hertz.elliptic_hertz`) of the whole load carried by this one pair.  The
 cells thus shrink and grow with the load.  Lattice points are carried onto the flank by two Newton steps of
 the tangent-plane map; those off the pinion flank or not over the gear flank are dropped, and the loaded
 cells next to a dropped one tell edge contact and where.
@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.hertz import elliptic_hertz
+from ltca.fem.hertz import elliptic_hertz
 
 from .model import BevelLoadedModel
 
@@ -50,7 +50,7 @@ class PairMinimum:
 @dataclass(frozen=True)
 class PairCells:
     """Cells of one pair: lattice indices (ia along the major, ib across), tangent coordinates (xi, eta, mm),
-    flank coordinates (t, L), the gaps (:class:`geometry.bevel.gaps.PointGaps`), cell sizes (dxi, deta, mm) and
+    flank coordinates (t, L), the gaps (:class:`ltca.geometry.bevel.gaps.PointGaps`), cell sizes (dxi, deta, mm) and
     the dropped lattice points' edge labels (``edge``: per cell, the edge it borders or ''), and ``rim``: the cell
     borders
     the window on the flank (a loaded rim cell means the window was too small)."""
@@ -193,7 +193,7 @@ def cells_of(lm: BevelLoadedModel, phi1: float, pms: list[PairMinimum], load2: f
              widen: dict | None = None) -> list[PairCells]:
     """The cells of several pairs at ``phi1``; each gap evaluation covers all pairs at once; ``widen`` {pair j:
     factor} enlarges the windows of pairs whose loaded cells reached the rim."""
-    from geometry.bevel.gaps import PointGaps
+    from ltca.geometry.bevel.gaps import PointGaps
     na, nb = lm.fid.cells
     lat, U, Y, phi, P0, E, Bi = [], [], [], [], [], [], []
     for pm in pms:
@@ -274,7 +274,7 @@ def _edge_labels(lm: BevelLoadedModel, U: np.ndarray, res, ok: np.ndarray) -> np
     lab[bad & (U[:, 1] > L1)] = "heel"
     rest = bad & (lab == "")
     if rest.any():
-        from geometry.bevel.gaps import depth_fraction as body_t
+        from ltca.geometry.bevel.gaps import depth_fraction as body_t
         bl = lm.pair.blank
         L2, Rn2 = res.L2[rest], res.Rn2[rest]
         t2 = body_t(bl, "gear", lm.gaps.G.off, L2, Rn2)

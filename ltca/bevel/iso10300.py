@@ -118,7 +118,7 @@ def contact_line_length(f: float, beta_vb: float, g_va: float, b_eff: float, b_v
 
 
 def virtual_gears(blank, b_eff: float | None = None) -> VirtualGears:
-    """The virtual cylindrical gears of a Gleason blank (:class:`geometry.bevel.blank.BevelBlank`), Method B1.
+    """The virtual cylindrical gears of a Gleason blank (:class:`ltca.geometry.bevel.blank.BevelBlank`), Method B1.
 
     Formulae (ISO 10300-1 Annex A): d_v = d_m / cos(delta) (A.3, A.4: d_m sqrt(u^2 + 1) / u and u^2 d_v1 at
     90 deg); beta_v = beta_m (A.8); alpha_vet = atan(tan(alpha_e) / cos(beta_v)) (A.10), alpha_e = alpha_n without
@@ -333,14 +333,14 @@ def iso10300_b1(blank, torque_nm: float, young: float = 206000.0, poisson: float
     Parameters
     ----------
     blank : BevelBlank
-        The pair's blank (:func:`geometry.bevel.blank.design_blank`).
+        The pair's blank (:func:`ltca.geometry.bevel.blank.design_blank`).
     torque_nm : float
         Pinion torque, N m (its magnitude; both flanks share the blank's pressure angle).
     young, poisson : float
         Material of both members, MPa and 1.
     rho_a0 : (float, float)
         Edge radius of the pinion's and the gear's cutter blades, mm (None: 0.2 outer modules, the gear
-        cutter's default in :func:`geometry.bevel.machine.gear_settings`).
+        cutter's default in :func:`ltca.geometry.bevel.machine.gear_settings`).
     b_eff : float, optional
         Effective face width, mm (default 0.85 b).
     e_ls : float

@@ -1,9 +1,9 @@
 """Loaded tooth contact of a bevel pair at one pinion angle: cells, compliance, complementarity, torque balance.
 
 The same path as the cylindrical LTCA (:mod:`ltca.cylindrical.loaded`): the cells' compliance is the two bodies'
-FE regular part on their flank grids (:meth:`fem.compliance.BodyCompliance.weights`, bilinear) plus the
-half-space near field between the cells of one pair (:func:`fem.halfspace.surface_influence`, uniform pressure on
-each rectangular cell of the tangent-plane lattice), and :func:`fem.contact.solve_contact` finds the forces and
+FE regular part on their flank grids (:meth:`ltca.fem.compliance.BodyCompliance.weights`, bilinear) plus the
+half-space near field between the cells of one pair (:func:`ltca.fem.halfspace.surface_influence`, uniform pressure on
+each rectangular cell of the tangent-plane lattice), and :func:`ltca.fem.contact.solve_contact` finds the forces and
 the gear's extra rotation under the torque balance  sum F_i v2_i = T2,  with the unloaded gaps
 g0_i = (g_i - g_min) v2_i  (g: closing gear rotation of the cell, v2: its gear lever, mm/rad).
 
@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.halfspace import surface_influence
+from ltca.fem.halfspace import surface_influence
 
 from ..position import cell_compliance, root_stresses, solve_rounds
 from .cells import PairCells, cells_of, pair_hertz, pair_minima

@@ -1,8 +1,8 @@
 """What the bevel LTCA solves on: the generated pair, the flank pair and assembly, both member bodies' compliance.
 
-The bodies (:func:`fem.bevel_compliance.bevel_compliance`) do not depend on the assembly errors (each lives in
+The bodies (:func:`ltca.fem.bevel_compliance.bevel_compliance`) do not depend on the assembly errors (each lives in
 its own body frame), so one :class:`BevelBodies` serves every E, P, G, Sigma and every torque; only the gap
-evaluator (:class:`geometry.bevel.gaps.MeshGaps`) is rebuilt per assembly.
+evaluator (:class:`ltca.geometry.bevel.gaps.MeshGaps`) is rebuilt per assembly.
 """
 from __future__ import annotations
 
@@ -11,12 +11,12 @@ from dataclasses import replace
 
 import numpy as np
 
-from fem.bevel_compliance import BevelComplianceSpec, bevel_compliance
-from fem.solids.bevel_body import convex_shift
-from geometry.bevel.gaps import MeshGaps
-from geometry.bevel.gaps import depth_fraction as body_t
-from geometry.bevel.generation import MeshingError, generate_flank
-from geometry.bevel.tca import Assembly, BevelPair
+from ltca.fem.bevel_compliance import BevelComplianceSpec, bevel_compliance
+from ltca.fem.solids.bevel_body import convex_shift
+from ltca.geometry.bevel.gaps import MeshGaps
+from ltca.geometry.bevel.gaps import depth_fraction as body_t
+from ltca.geometry.bevel.generation import MeshingError, generate_flank
+from ltca.geometry.bevel.tca import Assembly, BevelPair
 
 from .model import LOADED, MESHED, BevelBodies, BevelFidelity, BevelLoadedModel, BevelMounting
 
@@ -25,7 +25,7 @@ __all__ = ["BevelFidelity", "BevelMounting", "BevelBodies", "BevelLoadedModel", 
 
 def member_flanks(pair: BevelPair, member: str) -> tuple[dict, float, float]:
     """The member's two generated flanks on the body's axial grid, the grid's root offset (mm) and the rotation
-    of the convex flank that gives the design thickness (rad), as :class:`fem.solids.bevel_body.BevelBodySpec`
+    of the convex flank that gives the design thickness (rad), as :class:`ltca.fem.solids.bevel_body.BevelBodySpec`
     takes them."""
     bl = pair.blank
     mb, cut = bl.member(member), (pair.pinion if member == "pinion" else pair.gear)

@@ -7,9 +7,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fem.compliance import BodyCompliance
-from geometry.bevel.gaps import MeshGaps
-from geometry.bevel.tca import Assembly, BevelPair
+from ltca.fem.compliance import BodyCompliance
+from ltca.geometry.bevel.gaps import MeshGaps
+from ltca.geometry.bevel.tca import Assembly, BevelPair
 
 __all__ = ["LOADED", "MESHED", "BevelFidelity", "BevelMounting", "BevelBodies", "BevelLoadedModel"]
 
@@ -61,8 +61,8 @@ class BevelMounting:
 
     def supports(self, blank) -> dict[str, tuple[str, float]]:
         """``{"pinion": ("seat", rho), "gear": ("face", Z)}`` in each member's body frame (mm), for
-        :class:`fem.solids.bevel_body.BevelBodySpec`; ``blank`` is the pair's
-        :class:`geometry.bevel.blank.BevelBlank`."""
+        :class:`ltca.fem.solids.bevel_body.BevelBodySpec`; ``blank`` is the pair's
+        :class:`ltca.geometry.bevel.blank.BevelBlank`."""
         toe1, heel2 = blank.root_point("pinion", "toe"), blank.root_point("gear", "heel")
         seat = 0.45 * toe1[1] if self.pinion_seat_diameter is None else 0.5 * self.pinion_seat_diameter
         if self.gear_mounting_distance is None:

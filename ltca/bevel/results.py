@@ -15,7 +15,7 @@ import numpy as np
 import xarray as xr
 from scipy.interpolate import griddata
 
-from geometry.bevel.tca import RAD_PER_ARCSEC, tca
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, tca
 
 from .loaded import BevelPosition
 from .loaded_model import LOADED

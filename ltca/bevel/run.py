@@ -7,18 +7,18 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry.bevel.blank import design_blank
-from geometry.bevel.design import cycle_metrics, synthesize_pinion
-from geometry.bevel.generation import standard_gear_cut
-from geometry.bevel.machine import MemberCut
-from geometry.bevel.generation import generate_member, surface_state
-from geometry.bevel.separation import separation_tca
-from geometry.bevel.sheet import member_sheet, sheet_toml
-from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, tca, to_pitch_coords
-from geometry.bevel.undercut import undercut_check
+from ltca.geometry.bevel.blank import design_blank
+from ltca.geometry.bevel.design import cycle_metrics, synthesize_pinion
+from ltca.geometry.bevel.generation import standard_gear_cut
+from ltca.geometry.bevel.machine import MemberCut
+from ltca.geometry.bevel.generation import generate_member, surface_state
+from ltca.geometry.bevel.separation import separation_tca
+from ltca.geometry.bevel.sheet import member_sheet, sheet_toml
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, tca, to_pitch_coords
+from ltca.geometry.bevel.undercut import undercut_check
 
-from geometry.bevel.generation import MeshingError
-from geometry.bevel.tca import ContactError
+from ltca.geometry.bevel.generation import MeshingError
+from ltca.geometry.bevel.tca import ContactError
 
 from ..validation import DesignError
 from .case import load_bevel_case
@@ -248,7 +248,7 @@ def bevel_benchmark(repeat: int = 3, case_path: str | None = None) -> dict:
     """
     import time
 
-    from geometry.bevel.generation import generate_flank
+    from ltca.geometry.bevel.generation import generate_flank
     if not (isinstance(repeat, int) and repeat >= 1):
         raise ValueError(f"repeat = {repeat!r} is outside the allowed range [1, inf)")
     from ..shipped import case_path as shipped_case

@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from geometry.cylindrical import arc_length
+from ltca.geometry.cylindrical import arc_length
 
 from ..position import cell_compliance
 from .cell_clip import (MIN_FRACTION, bounding_edges, clip_to_gear_flank, clip_to_pinion_flank,
@@ -160,10 +160,10 @@ def near_field_block(I, J, ds, length, E, nu, frac=None, shift=None):
 
     Cells (I, J) are lattice indices across and along the line of the developed flank; a cell is ``ds``
     wide and ``length`` long. The bodies' FE parts have their own half-space response removed
-    (:mod:`fem.compliance`), so this is the whole local term; it is tabulated over integer lattice offsets.
+    (:mod:`ltca.fem.compliance`), so this is the whole local term; it is tabulated over integer lattice offsets.
     Cells clipped at an edge keep the fraction ``frac`` of their length, centred ``shift`` cell lengths off
     their lattice place: their rows and columns are computed directly (receiver at each centre, symmetrised)."""
-    from fem.halfspace import surface_influence
+    from ltca.fem.halfspace import surface_influence
     a, bh = 0.5 * ds, 0.5 * length
     di = np.arange(I.min() - I.max(), I.max() - I.min() + 1)
     dj = np.arange(J.min() - J.max(), J.max() - J.min() + 1)

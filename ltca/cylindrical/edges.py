@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from geometry.cylindrical import arc_length, radius_of_arc
+from ltca.geometry.cylindrical import arc_length, radius_of_arc
 
 from .loaded import PositionResult
 from .loaded_model import LoadedModel, hertz_line

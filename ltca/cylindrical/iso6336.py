@@ -7,7 +7,7 @@
   c_gamma = c' (0.75 eps_alpha + 0.25);
 - :func:`root_stress_nominal`: the ISO 6336-3 nominal tooth-root stress sigma_F0 = F_t / (b m_n) Y_F Y_S Y_eps
   (load at the tip, form and stress-correction factors measured on the generated outline by the 30 deg
-  tangents, :func:`geometry.satellite.rating.root_section`), to set beside the fillet stress of the LTCA.
+  tangents, :func:`ltca.geometry.satellite.rating.root_section`), to set beside the fillet stress of the LTCA.
 
 References (tests/reference/): fzg_c14.csv, GEARpie REPORT/C14.txt (F_bt = 5912.1 N, p0 = 1347.3 MPa,
 b = 199.5 um), hertz.md, iso6336_stiffness.md.
@@ -148,11 +148,11 @@ class RootNominal:
 def root_stress_nominal(model: PairModel, torque: float, eps_alpha: float) -> list[RootNominal]:
     """ISO 6336-3 nominal root stress sigma_F0 of each external member at pinion torque ``torque`` (N mm).
 
-    Y_F and Y_S for the load at the tip corner (:func:`geometry.satellite.rating.root_section`), Y_eps =
+    Y_F and Y_S for the load at the tip corner (:func:`ltca.geometry.satellite.rating.root_section`), Y_eps =
     0.25 + 0.75 / eps_alpha_n turns that into the load at the outer point of single contact (ISO 6336-3:1996
     Method C); Y_beta = Y_B = Y_DT = 1 and no load factors (K = 1): the nominal value the LTCA's fillet stress is
     set beside. Internal members are left out (their 60 deg tangent section is not implemented)."""
-    from geometry.satellite.rating import root_section
+    from ltca.geometry.satellite.rating import root_section
     case = model.case
     beta_b = model.pinion.beta_b
     eps_n = eps_alpha / np.cos(beta_b) ** 2

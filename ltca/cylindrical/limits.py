@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from geometry.cylindrical import arc_length
+from ltca.geometry.cylindrical import arc_length
 
 from ..validation import DesignError
 from .loaded_model import hertz_line

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.compliance import BodyCompliance
+from ltca.fem.compliance import BodyCompliance
 
 from ..errors import ConvergenceError
 from ..position import root_stresses, solve_rounds

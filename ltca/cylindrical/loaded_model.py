@@ -10,8 +10,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fem.compliance import BodyCompliance, ComplianceSpec, body_compliance
-from geometry.cylindrical import arc_length
+from ltca.fem.compliance import BodyCompliance, ComplianceSpec, body_compliance
+from ltca.geometry.cylindrical import arc_length
 
 from .model import PairModel
 from .tca import flank_gaps, unloaded_tca
@@ -94,7 +94,7 @@ class LoadedModel:
     timings: dict = field(default_factory=dict)
 
     def without_solver(self) -> LoadedModel:
-        """The same model with both bodies' factor freed (:meth:`fem.compliance.BodyCompliance.without_solver`):
+        """The same model with both bodies' factor freed (:meth:`ltca.fem.compliance.BodyCompliance.without_solver`):
         for studies and checks that write no VTU; ``self`` can no longer write one."""
         return dataclasses.replace(self, body1=self.body1.without_solver(), body2=self.body2.without_solver())
 

@@ -10,12 +10,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geometry.cylindrical import flank_point_normal
-from geometry.involute import GearBlank, RackCutter, ToothProfile, generate_by_rack, involute, inverse_involute
-from geometry.shaper import ShaperCutter, generate_by_shaper
-from geometry.tip_edge import largest_tip_edge, with_tip_edge
-from geometry.modification import FlankModification, profile_slope_from_roll_ratio
-from geometry.pair import CylindricalPair
+from ltca.geometry.cylindrical import flank_point_normal
+from ltca.geometry.involute import GearBlank, RackCutter, ToothProfile, generate_by_rack, involute, inverse_involute
+from ltca.geometry.shaper import ShaperCutter, generate_by_shaper
+from ltca.geometry.tip_edge import largest_tip_edge, with_tip_edge
+from ltca.geometry.modification import FlankModification, profile_slope_from_roll_ratio
+from ltca.geometry.pair import CylindricalPair
 
 from ..case import CylindricalCase, Member
 from ..errors import CaseError

@@ -22,9 +22,9 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from fem.readout import element_stress_matrix
-from geometry.cylindrical import flank_point_normal
-from geometry.pair import rotation_z
+from ltca.fem.readout import element_stress_matrix
+from ltca.geometry.cylindrical import flank_point_normal
+from ltca.geometry.pair import rotation_z
 
 from .loaded import PositionResult, weights_of
 from .loaded_model import LoadedModel

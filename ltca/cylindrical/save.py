@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry.pair import rotation_z
+from ltca.geometry.pair import rotation_z
 
 from .analysis import CylindricalRun
 from .loaded import weights_of

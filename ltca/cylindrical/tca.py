@@ -11,10 +11,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geometry.cylindrical import arc_length, radius_of_arc
-from geometry.cylindrical import flank_point_normal
-from geometry.modification import modification_depth
-from geometry.tip_edge import tip_edge_depth
+from ltca.geometry.cylindrical import arc_length, radius_of_arc
+from ltca.geometry.cylindrical import flank_point_normal
+from ltca.geometry.modification import modification_depth
+from ltca.geometry.tip_edge import tip_edge_depth
 
 from .model import PairModel
 

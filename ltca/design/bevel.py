@@ -8,9 +8,9 @@ micrometres, and :func:`ltca.bevel.loaded_model.loaded_model` takes the new pair
 levers and contact cells are the candidate's own). ``optimum/`` is ``ltca run`` of the optimum with a fresh
 compliance; their loaded TE against the candidate's is the measured reuse error (``full_analysis`` in design.json).
 
-Synthesis. Only a flank whose targets changed is synthesised (:func:`geometry.bevel.design.control_point_design`,
+Synthesis. Only a flank whose targets changed is synthesised (:func:`ltca.geometry.bevel.design.control_point_design`,
 the free design and, for a case with ``blank_offset_mm``, the redesign at that offset, as
-:func:`geometry.bevel.design.synthesize_pinion` does): the other flank's cut is the start design's. A candidate the
+:func:`ltca.geometry.bevel.design.synthesize_pinion` does): the other flank's cut is the start design's. A candidate the
 geometry cannot make (no converged synthesis, contact leaving the flank, settings outside
 :data:`ltca.design.bevel_checks.MACHINE_RANGES`, undercut, no loaded contact) is infeasible with its reason.
 """
@@ -26,13 +26,13 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry.bevel.blank import design_blank
-from geometry.bevel.design import control_point_design
-from geometry.bevel.generation import standard_gear_cut
-from geometry.bevel.machine import MemberCut
-from geometry.bevel.synthesis import FlankTarget
-from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair
-from geometry.bevel.undercut import undercut_check
+from ltca.geometry.bevel.blank import design_blank
+from ltca.geometry.bevel.design import control_point_design
+from ltca.geometry.bevel.generation import standard_gear_cut
+from ltca.geometry.bevel.machine import MemberCut
+from ltca.geometry.bevel.synthesis import FlankTarget
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair
+from ltca.geometry.bevel.undercut import undercut_check
 
 from ..bevel.analysis import cycle_positions
 from ..bevel.case import bevel_case_from_data

@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from geometry.bevel.machine import FlankCut
+from ltca.geometry.bevel.machine import FlankCut
 
 __all__ = ["MACHINE_RANGES", "machine_violations", "edge_margin", "top_margin", "cycle_measures"]
 
@@ -76,7 +76,7 @@ def cycle_measures(lm, res) -> dict:
     """Figures of one loaded cycle: TE peak-to-peak (arcsec), peak interior pressure (MPa, beyond the edge band of
     :func:`ltca.bevel.results.edge_band`), largest edge load share of a position, toe / heel and top margins
     (mm, module docstring), the edges loaded."""
-    from geometry.bevel.tca import RAD_PER_ARCSEC
+    from ltca.geometry.bevel.tca import RAD_PER_ARCSEC
     te = np.array([r.te for r in res]) / RAD_PER_ARCSEC
     from ltca.bevel.results import edge_band
     band = edge_band(lm.pair.blank.data.module)

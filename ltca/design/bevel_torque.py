@@ -58,7 +58,7 @@ def _backend(data: dict, file: str, torques, m21_upper: float, box_mm):
 def scan(backend, eta2_deg: float, m21s, torques, corners: bool = False, say=None) -> list[dict]:
     """Rows (module docstring) of every m21 (arcsec) at every torque (N m) at path angle ``eta2_deg``; a design
     the geometry cannot make is a row with its ``failure``."""
-    from geometry.bevel.tca import RAD_PER_ARCSEC
+    from ltca.geometry.bevel.tca import RAD_PER_ARCSEC
     rows = []
     for m in m21s:
         values = {"working_path_angle_deg": float(eta2_deg), "working_te_magnitude_arcsec": float(m)}

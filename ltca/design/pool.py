@@ -63,7 +63,7 @@ class _SharedPickler(pickle.Pickler):
             np.save(path, obj, allow_pickle=False)
             self.saved += 1
             return _load_array, (path,)
-        from fem.solver import Factorization
+        from ltca.fem.solver import Factorization
         if isinstance(obj, Factorization):
             return _none, ()
         return NotImplemented
@@ -71,7 +71,7 @@ class _SharedPickler(pickle.Pickler):
 
 def dumps_shared(obj, folder: str) -> bytes:
     """``obj`` pickled with every plain array of at least :data:`MMAP_BYTES` saved to ``folder`` (loaded back
-    memory-mapped, read-only) and every :class:`fem.solver.Factorization` replaced by None.
+    memory-mapped, read-only) and every :class:`ltca.fem.solver.Factorization` replaced by None.
 
     Parameters
     ----------

@@ -17,7 +17,7 @@ Tables (engineer's units, converted once here to mm, rad, N mm, MPa):
 * ``[analysis]`` positions (per mesh cycle), fidelity, far_teeth (``none`` | ``full``).
 
 Every mistake raises :class:`ltca.errors.CaseError` naming the field (exit status 2 on the command line);
-the tool records of :mod:`geometry.satellite.tools` check their own ranges and their messages are turned
+the tool records of :mod:`ltca.geometry.satellite.tools` check their own ranges and their messages are turned
 into the field of the case that holds the value.
 """
 from __future__ import annotations
@@ -26,9 +26,9 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from geometry.satellite import METHODS, DiskCutter, HobThreePass, SatelliteDesign, SpecialHob
-from geometry.satellite.rating import RatingInputs
-from geometry.satellite.wheel import CentralWheelDesign
+from ltca.geometry.satellite import METHODS, DiskCutter, HobThreePass, SatelliteDesign, SpecialHob
+from ltca.geometry.satellite.rating import RatingInputs
+from ltca.geometry.satellite.wheel import CentralWheelDesign
 
 from ..case import FIDELITIES, TORQUE, read_toml
 from ..errors import CaseError
@@ -213,11 +213,11 @@ def forming_error(method: str, exc: BaseException, file: str | None = None) -> D
 
 
 def compare_case_forming(case: PlanetaryCase, file: str | None = None):
-    """:func:`geometry.satellite.compare.compare_forming` with the case's tools; a tool that cannot cut this satellite
+    """:func:`ltca.geometry.satellite.compare.compare_forming` with the case's tools; a tool that cannot cut this satellite
     (a vanishing tip, an empty profile, no disk-cutter plunge giving the Eq. 3 thickness) is a
     :class:`~ltca.validation.DesignError` naming the method and its fields (exit status 2), not a traceback."""
-    from geometry.satellite.compare import compare_forming, plunge_for_thickness
-    from geometry.satellite.forming import form_disk_cutter, form_hob_three_pass, form_special_hob
+    from ltca.geometry.satellite.compare import compare_forming, plunge_for_thickness
+    from ltca.geometry.satellite.forming import form_disk_cutter, form_hob_three_pass, form_special_hob
     hob, disk, special = (case.tools[k] for k in ("hob_three_pass", "disk_cutter", "special_hob"))
     try:
         return compare_forming(case.design, hob, disk, special)

@@ -4,13 +4,13 @@ Route (the smallest that is honest): the pair is a :class:`ltca.cylindrical.mode
 (:mod:`.model`), so the cylindrical chain's separation field, contact strips (a transverse profile
 lattice times face slices per pair, :mod:`ltca.cylindrical.contact_cells`), half-space near field and
 complementarity solve with torque balance (:func:`ltca.cylindrical.loaded.solve_position`,
-:func:`fem.contact.solve_contact`) run unchanged. What is specific to this pair is done here:
+:func:`ltca.fem.contact.solve_contact`) run unchanged. What is specific to this pair is done here:
 
-* the teeth in mesh: every satellite tooth whose exact unloaded gap (:func:`geometry.satellite.unloaded_gaps`)
+* the teeth in mesh: every satellite tooth whose exact unloaded gap (:func:`ltca.geometry.satellite.unloaded_gaps`)
   at any analysed position is below ``3 w / c' + 10 um`` (w the line load of the largest torque on one
   pair, c' = 14 N/(mm um), the cylindrical chain's rule), instead of +-3 teeth around a pitch point that
   lies outside both gears; the wheel teeth they face;
-* both bodies whole (:func:`fem.compliance.body_compliance`, :mod:`fem.solids.gear_body`): the satellite held
+* both bodies whole (:func:`ltca.fem.compliance.body_compliance`, :mod:`ltca.fem.solids.gear_body`): the satellite held
   at its bore (the eccentric bearing's seat), the wheel at its outer rim (the housing), the loaded teeth and
   a neighbour each side fine;
 * the nominal Hertz radius at the actual contact (radius ``r1`` of the first contact, relative curvature of
@@ -20,7 +20,7 @@ The reverse direction (negative torque, left satellite flanks) is the mirror ima
 about the line of centres: both tooth outlines are symmetric and both supports axisymmetric, so the
 reverse contact at position phi is the drive contact at -phi with tooth labels negated. It is taken so,
 not solved again; the exact unloaded gaps of both directions (computed independently by
-:meth:`geometry.satellite.EccentricMesh.window`) confirm the symmetry (tests).
+:meth:`ltca.geometry.satellite.EccentricMesh.window`) confirm the symmetry (tests).
 """
 from __future__ import annotations
 
@@ -29,12 +29,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.compliance import ComplianceSpec, body_compliance
+from ltca.fem.compliance import ComplianceSpec, body_compliance
 
 from ..cylindrical.loaded import solve_position
 from ..cylindrical.loaded_model import Fidelity, LoadedModel, hertz_line
 from ..cylindrical.tca import flank_gaps
-from geometry.cylindrical import arc_length
+from ltca.geometry.cylindrical import arc_length
 
 from .model import SatelliteModel
 
@@ -76,7 +76,7 @@ def prepare_satellite(sm: SatelliteModel, fid: Fidelity, phis: np.ndarray, torqu
     """Teeth in mesh over ``phis`` for torques up to ``torque_max`` (N mm) and both bodies' compliance.
 
     Without ``keep_solver`` each body's factor is freed as soon as its compliance is known
-    (:meth:`fem.compliance.BodyCompliance.without_solver`: no VTU can be written), so that the two factors
+    (:meth:`ltca.fem.compliance.BodyCompliance.without_solver`: no VTU can be written), so that the two factors
     never coexist: on the shipped pair the peak falls by the first body's factor (about 3.5 GB)."""
     say = progress or (lambda m: None)
     pm, case = sm.pair, sm.pair.case

@@ -1,18 +1,18 @@
 """The satellite and the central wheel of a planetary case as one cylindrical pair model.
 
-The satellite (external, cut by the case's method, :func:`geometry.satellite.form_satellite`) and the
-central wheel (internal, shaper cut, :func:`geometry.satellite.generate_central_wheel`) are placed at the
+The satellite (external, cut by the case's method, :func:`ltca.geometry.satellite.form_satellite`) and the
+central wheel (internal, shaper cut, :func:`ltca.geometry.satellite.generate_central_wheel`) are placed at the
 eccentricity as a :class:`ltca.cylindrical.model.PairModel`, so that the cylindrical separation field,
 contact cells and contact solve run on this pair unchanged. Two assumptions of the cylindrical chain do
 not hold here and are replaced:
 
 * the working pitch circle (``r_w1 = e z1 / (z2 - z1)`` = 150 mm for Kapitonov et al. 2014) lies far outside both
   gears, so the pair is not calibrated at a pitch point: the wheel phase is the symmetric placement of
-  :class:`geometry.satellite.EccentricMesh` (satellite tooth 0 centred in a wheel space on the line of
+  :class:`ltca.geometry.satellite.EccentricMesh` (satellite tooth 0 centred in a wheel space on the line of
   centres at ``phi1 = 0``), and a pinion angle ``phi1`` of the pair is the mesh position ``phi = -phi1``
-  of :mod:`geometry.satellite.mesh` (``phi_pitch = 0``, roll = phi);
+  of :mod:`ltca.geometry.satellite.mesh` (``phi_pitch = 0``, roll = phi);
 * the teeth in mesh are not +-3 around the pitch point but every pair whose unloaded gap
-  (:func:`geometry.satellite.unloaded_gaps`) can close under the largest torque (:mod:`.loaded`).
+  (:func:`ltca.geometry.satellite.unloaded_gaps`) can close under the largest torque (:mod:`.loaded`).
 
 The satellite drives clockwise with its right flanks (direction +1); the wheel, fixed in its housing,
 carries the load on its left flanks (``gear_side = -1``, measured, not assumed).
@@ -22,12 +22,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 
-from geometry.modification import FlankModification
-from geometry.pair import CylindricalPair
-from geometry.profile import ToothProfile
-from geometry.satellite import EccentricMesh, form_satellite, generate_central_wheel
-from geometry.satellite.forming import FormedTooth
-from geometry.satellite.wheel import WheelChoice
+from ltca.geometry.modification import FlankModification
+from ltca.geometry.pair import CylindricalPair
+from ltca.geometry.profile import ToothProfile
+from ltca.geometry.satellite import EccentricMesh, form_satellite, generate_central_wheel
+from ltca.geometry.satellite.forming import FormedTooth
+from ltca.geometry.satellite.wheel import WheelChoice
 
 from ..cylindrical.model import PairModel
 from ..errors import CaseError
@@ -36,7 +36,7 @@ __all__ = ["EccentricPair", "SatelliteModel", "build_satellite_model"]
 
 
 class EccentricPair(CylindricalPair):
-    """:class:`geometry.pair.CylindricalPair` with the wheel at the symmetric placement (no pitch-point
+    """:class:`ltca.geometry.pair.CylindricalPair` with the wheel at the symmetric placement (no pitch-point
     calibration: the working pitch circle of a tooth difference of one lies outside both gears)."""
 
     def _calibrate(self) -> float:

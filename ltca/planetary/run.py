@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry.satellite import plot_forming, rated_torque, unloaded_gaps
+from ltca.geometry.satellite import plot_forming, rated_torque, unloaded_gaps
 
 from ..case import FIDELITIES
 from ..errors import CaseError
@@ -53,7 +53,7 @@ def run_forming(case_path, out=None) -> list[dict]:
 
 
 def planetary_tca_summary(case, n_positions: int | None = None) -> tuple[dict, list, object]:
-    """Unloaded gaps of every pair over one mesh cycle in both directions (exact, :mod:`geometry.satellite`):
+    """Unloaded gaps of every pair over one mesh cycle in both directions (exact, :mod:`ltca.geometry.satellite`):
     (summary, the pairs-within rows, the gaps record). Writes and prints nothing."""
     sm = build_satellite_model(case)
     n = n_positions or max(case.positions, 12)

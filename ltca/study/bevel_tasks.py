@@ -22,7 +22,7 @@ import os
 import time
 from dataclasses import dataclass, replace
 
-from geometry.bevel.tca import Assembly, BevelPair
+from ltca.geometry.bevel.tca import Assembly, BevelPair
 
 from ..bevel.analysis import FLANK, analyse_torque, build_pair, cycle_positions
 from ..bevel.case import BevelCase, bevel_case_from_data

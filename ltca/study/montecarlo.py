@@ -9,7 +9,7 @@ of seed s is the same whatever the sample size: numpy ``SeedSequence(s, spawn_ke
   e sin(2 pi k / z + phase). Its centre-distance part e cos(...) is not modelled: an involute pair's
   transmission is insensitive to the centre distance (second order through the contact ratio).
 - single pitch deviations: each pitch uniform within +/- (f_pT - 2 e sin(pi / z)), closing over the revolution
-  (:func:`geometry.errors.random_pitch_deviations`), so that with the eccentricity every measured single pitch
+  (:func:`ltca.geometry.errors.random_pitch_deviations`), so that with the eccentricity every measured single pitch
   deviation stays within f_pT. Their sum is each tooth's position error: case key
   ``<member>.modifications.pitch_errors_um`` (added to any the base case has). The total cumulative pitch
   deviation F_p follows from these; a draw whose F_p exceeds F_pT is drawn again (rejection: the gear
@@ -17,7 +17,7 @@ of seed s is the same whatever the sample size: numpy ``SeedSequence(s, spawn_ke
 - profile slope f_Halpha ~ U[-f_HalphaT, f_HalphaT] -> ``profile_slope_um``; helix slope f_Hbeta ->
   ``lead_slope_um`` (over the face width: the model's evaluation range is the whole flank, ISO's slightly less).
 - profile form f_falpha and helix form f_fbeta ~ U[-T, T] (sign: convex or hollow) -> ``profile_form_um`` and
-  ``lead_form_um``, the parabolic part of a form deviation (:class:`geometry.modification.FlankModification`);
+  ``lead_form_um``, the parabolic part of a form deviation (:class:`ltca.geometry.modification.FlankModification`);
   waviness is not modelled.
 - slope and form are the same on every tooth of a member (the case keys are per member): their tooth-to-tooth
   scatter is not modelled.
@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-from geometry.errors import random_pitch_deviations, tooth_positions
+from ltca.geometry.errors import random_pitch_deviations, tooth_positions
 
 from ..case import CylindricalCase
 from ..errors import CaseError

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.compliance import BodyCompliance, body_compliance, body_spec
+from ltca.fem.compliance import BodyCompliance, body_compliance, body_spec
 
 from ..case import FIDELITIES, CylindricalCase, parse_case
 from ..cylindrical.loaded_model import BodyPlan, Fidelity, plan_bodies, prepare

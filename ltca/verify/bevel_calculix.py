@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly
 
 from ..bevel.analysis import build_pair
 from ..bevel.case import load_bevel_case
@@ -153,7 +153,7 @@ def run_bevel_validation(case_path: str, fractions=(0.0, 0.4), out: str = "out/v
     """Ours against CalculiX at pinion angles ``fractions`` x 2 pi / z1 under the pinion ``torque`` (N m; default
     the case's middle torque), CalculiX on ``threads`` at the contact-zone size ``h0`` / 1.5^``level`` (mm); writes
     ``bevel_calculix.json`` to ``out``; exit status 0 when inside the bounds."""
-    from fem.calculix.run import ccx_path
+    from ltca.fem.calculix.run import ccx_path
     check_arguments(fractions, level, h0, threads)
     ccx_path()
     say = (lambda m: print(m, file=sys.stderr, flush=True)) if progress else (lambda m: None)

@@ -1,15 +1,15 @@
 """CalculiX on the whole spiral bevel pair: the independent FE check of the bevel LTCA.
 
-Both members are OpenCASCADE solids with every tooth (:mod:`fem.solids.bevel_occ`: lofted from exact flank
+Both members are OpenCASCADE solids with every tooth (:mod:`ltca.fem.solids.bevel_occ`: lofted from exact flank
 points, fused with a revolved blank, gmsh tetrahedra refined on the contact zones), not our mapped body
-(:mod:`fem.solids.bevel_body`).  Supports as in service: the pinion's bore (a shaft seat of radius
+(:mod:`ltca.fem.solids.bevel_body`).  Supports as in service: the pinion's bore (a shaft seat of radius
 ``r_bore1``) is a rigid body that may only turn about the pinion axis and carries the pinion torque; the
 gear's back face (a mounting face ``back_depth`` whole depths under the heel's root) is fixed.  Contact:
 frictionless surface-to-surface penalty contact, linear pressure-overclosure law of slope 10 E / h.
 
-World frame: the pinion's axis frame in the mesh (:func:`geometry.bevel.tca.mesh_frames`, not rotated), so the
+World frame: the pinion's axis frame in the mesh (:func:`ltca.geometry.bevel.tca.mesh_frames`, not rotated), so the
 pinion turns about world z.  At pinion angle phi1 the gear is set where it first touches (the smallest closing
-rotation g_min of the unloaded gaps, :mod:`geometry.bevel.gaps`); the pinion is turned ``preload`` into it and
+rotation g_min of the unloaded gaps, :mod:`ltca.geometry.bevel.gaps`); the pinion is turned ``preload`` into it and
 the torque added.  The loaded approach as a gear rotation is theta = (z1/z2)(preload + s psi) with psi the
 pinion's rotation read and s the closing sense; our counterpart is :attr:`BevelPosition.theta`.  The contact
 zone of pair j (refined, and the contact surfaces) is where the unloaded normal gap is below ``cap_refine`` and
@@ -44,11 +44,11 @@ from pathlib import Path
 
 import numpy as np
 
-from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
-from fem.calculix.run import read_results, run_ccx
-from fem.solids.bevel_occ import BevelSolidSpec, build_bevel_solid
-from geometry.bevel.generation import generate_flank
-from geometry.bevel.tca import RAD_PER_ARCSEC, mesh_frames, to_pitch_coords
+from ltca.fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
+from ltca.fem.calculix.run import read_results, run_ccx
+from ltca.fem.solids.bevel_occ import BevelSolidSpec, build_bevel_solid
+from ltca.geometry.bevel.generation import generate_flank
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, mesh_frames, to_pitch_coords
 
 from ..bevel.cells import pair_minima
 from ..bevel.model import LOADED, BevelLoadedModel

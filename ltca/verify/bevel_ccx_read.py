@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from geometry.bevel.tca import to_pitch_coords
+from ltca.geometry.bevel.tca import to_pitch_coords
 
 __all__ = ["interior", "world_interior", "fit_peak", "read_pairs"]
 

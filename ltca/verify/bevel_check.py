@@ -2,8 +2,8 @@
 the light-load limit, the V-H table of pattern shifts), ``ltca convergence`` (the fidelity ladder: time against
 error) and ``ltca bench`` (cold medians of the stages' wall times) for a case with a [bevel] table.
 
-References: elliptic Hertz (:mod:`fem.hertz`) with the relative curvature of the unloaded TCA's contact ellipse
-(Litvin's curvature analysis of both generated surfaces, :func:`geometry.bevel.tca.tca`); the TCA's contact point
+References: elliptic Hertz (:mod:`ltca.fem.hertz`) with the relative curvature of the unloaded TCA's contact ellipse
+(Litvin's curvature analysis of both generated surfaces, :func:`ltca.geometry.bevel.tca.tca`); the TCA's contact point
 for the direction of the pattern shift under the assembly errors (the Gleason V-H check reads the same shifts on
 a test machine: V is the offset E, H the pinion axial P).
 """
@@ -17,8 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fem.hertz import elliptic_hertz
-from geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, tca
+from ltca.fem.hertz import elliptic_hertz
+from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, tca
 
 from ..bevel.analysis import analyse_torque, build_pair, cycle_positions
 from ..bevel.case import load_bevel_case

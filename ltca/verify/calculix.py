@@ -25,12 +25,12 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry.cylindrical import arc_length
-from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
-from fem.calculix.run import read_results, run_ccx
-from fem.solids import ContactLine, build_refined_body, facets_near_lines
-from fem.compliance import body_spec
-from geometry.pair import rotation_z
+from ltca.geometry.cylindrical import arc_length
+from ltca.fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
+from ltca.fem.calculix.run import read_results, run_ccx
+from ltca.fem.solids import ContactLine, build_refined_body, facets_near_lines
+from ltca.fem.compliance import body_spec
+from ltca.geometry.pair import rotation_z
 
 from ..cylindrical.loaded_model import LoadedModel
 from ..cylindrical.loaded import solve_position

@@ -4,7 +4,7 @@ Each rung is a complete cold analysis (mesh, compliance, contact at every positi
 relative to the finest rung: loaded TE (largest deviation over the positions, relative to the
 reference's mean loaded TE), peak contact pressure at the pitch point and over the cycle, and the
 largest root stress of the pinion and of the gear over the positions (each rung meshes the read fillets at its own
-``fillet`` size, :mod:`fem.fillet`).
+``fillet`` size, :mod:`ltca.fem.fillet`).
 """
 from __future__ import annotations
 

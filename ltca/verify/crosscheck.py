@@ -63,8 +63,8 @@ def run_calculix_validation(case_path: str, positions: list[float] | None, out: 
 
     Prints a table, writes ``calculix.csv`` and ``calculix.png`` to ``out`` and returns 0 when all positions are
     within :data:`BOUNDS`, 1 otherwise. Raises ``CaseError`` on a bad case or argument and
-    ``fem.calculix.run.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
-    from fem.calculix.run import ccx_path
+    ``ltca.fem.calculix.run.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
+    from ltca.fem.calculix.run import ccx_path
     from ..case import FIDELITIES, load_case
     from ..cylindrical.loaded_model import Fidelity, prepare
     from ..cylindrical.model import build_model

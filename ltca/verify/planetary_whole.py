@@ -2,14 +2,14 @@
 
 Ours: the planetary LTCA (:mod:`ltca.planetary.loaded`: both whole bodies' compliance, every pair that can
 close). CalculiX: the independent whole-gear model (:func:`ltca.verify.whole_gear.solve_whole`): both gears
-meshed with every tooth by :func:`fem.solids.full_gear.build_full_gear` (the wheel as the internal ring out to
+meshed with every tooth by :func:`ltca.fem.solids.full_gear.build_full_gear` (the wheel as the internal ring out to
 its housing diameter), the wheel's outer cylinder fixed, the satellite's bore (its eccentric bearing's seat) on
 a rigid body turning about the satellite axis under the torque, frictionless penalty contact on every
 satellite tooth whose unloaded gap after the rigid rotation to first contact is below an ISO-like bound
 (``1.2 T / (r_b1 b c') + 2 um``, c' = 14 N/(mm um): far more than the loaded TE, so every pair that could
 close can). Same quantities on both sides:
 
-* position phi (deg): the satellite rotation of :mod:`geometry.satellite.mesh` (0: satellite tooth 0 centred
+* position phi (deg): the satellite rotation of :mod:`ltca.geometry.satellite.mesh` (0: satellite tooth 0 centred
   in a wheel space on the line of centres), the roll of the pair model;
 * loaded TE: satellite rotation (wheel fixed) beyond the rigid rotation to first contact, um along the line of
   action (times r_b1) and arcsec of the satellite;
@@ -147,7 +147,7 @@ def run_planetary_whole_validation(case_path: str, positions: list[float], torqu
     satellite); returns 0 within the bounds, else 1. Writes ``planetary_whole.json`` to ``out``.
 
     Raises ``CaseError`` on bad arguments (before looking for ``ccx``) and ``CcxNotFound`` when it is missing."""
-    from fem.calculix.run import ccx_path
+    from ltca.fem.calculix.run import ccx_path
     from ..planetary.case import load_planetary_case
     case = load_planetary_case(case_path)
     band_um = 600.0 if band_um is None else band_um

@@ -163,7 +163,7 @@ def run_whole_validation(case_path: str, positions: list[float], out: str, band_
 
     Prints the table and writes ``whole_gear.csv`` and ``whole_gear.json`` to ``out``. Raises ``CaseError``
     on bad arguments (before looking for ``ccx``) and ``CcxNotFound`` when ``ccx`` is missing."""
-    from fem.calculix.run import ccx_path
+    from ltca.fem.calculix.run import ccx_path
     from ..case import load_case
     case = load_case(case_path)
     rolls = list(positions or [0.0, -9.0])

@@ -1,7 +1,7 @@
 """CalculiX on whole gears with every tooth: the check that shares no assumption with our body.
 
-Both members are meshed by :func:`fem.solids.full_gear.build_full_gear` (every tooth, the real bore, a web
-where the case has one; not our compliance body :mod:`fem.solids.gear_body`), refined in a band around
+Both members are meshed by :func:`ltca.fem.solids.full_gear.build_full_gear` (every tooth, the real bore, a web
+where the case has one; not our compliance body :mod:`ltca.fem.solids.gear_body`), refined in a band around
 the unloaded contact lines at the position, placed in the world (pinion rotated by phi1 = phi_pitch - roll,
 gear by ``pair.gear_frame(phi1)``) and solved by CalculiX with frictionless penalty contact. Supports as on
 the shafts: the gear's bore nodes are fixed; the pinion's bore nodes form a rigid body whose reference
@@ -46,11 +46,11 @@ from pathlib import Path
 
 import numpy as np
 
-from fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
-from fem.calculix.run import read_results, run_ccx
-from fem.solids.full_gear import FullGearSpec, build_full_gear, tooth_label
-from fem.solids.refinement import ContactLine, facets_near_lines, line_size_expression
-from geometry.pair import rotation_z
+from ltca.fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
+from ltca.fem.calculix.run import read_results, run_ccx
+from ltca.fem.solids.full_gear import FullGearSpec, build_full_gear, tooth_label
+from ltca.fem.solids.refinement import ContactLine, facets_near_lines, line_size_expression
+from ltca.geometry.pair import rotation_z
 
 from ..cylindrical.loaded_model import LoadedModel
 from ..cylindrical.tca import ARCSEC_PER_RAD, first_contact

@@ -1,17 +1,17 @@
 """Root (fillet) stress of the whole-gear CalculiX model, read as our solver reads its own.
 
-Our solver's root stress (:meth:`fem.compliance.BodyCompliance.root_max`, points from
-:func:`fem.fillet.fillet_points`) is, per loaded tooth, the largest principal stress at points
+Our solver's root stress (:meth:`ltca.fem.compliance.BodyCompliance.root_max`, points from
+:func:`ltca.fem.fillet.fillet_points`) is, per loaded tooth, the largest principal stress at points
 ``DEPTH`` = 0.05 mm inside the fillet on the side of the loaded flank (the tension side of an external
 gear), over the fillet's whole length (outline kind 1) and the face ``|z| <= 0.45 b``; a member's root
 stress is the largest over its loaded teeth. Here the same, on CalculiX's results: its nodal stresses
 (``*EL FILE`` ``S``: extrapolated from the integration points and averaged at the nodes;
-:func:`fem.calculix.run.read_nodal_stress`) interpolated with the quadratic shape functions at points
+:func:`ltca.fem.calculix.run.read_nodal_stress`) interpolated with the quadratic shape functions at points
 0.05 mm inside the same fillets (densely: every ``step`` along the fillet and along the face, so the
 maximum is not missed between points), and their largest principal stress, computed here (nothing of our
 compliance code is used). Ours averages its element stresses at the nodes the same way
-(:func:`fem.readout.nodal_stress`) and reads 0.1 mm apart along the fillet, 1 mm along the face
-(:data:`fem.fillet.ROOT_STEP`). The depth matters: near a fillet of radius rho the stress falls by about
+(:func:`ltca.fem.readout.nodal_stress`) and reads 0.1 mm apart along the fillet, 1 mm along the face
+(:data:`ltca.fem.fillet.ROOT_STEP`). The depth matters: near a fillet of radius rho the stress falls by about
 2 x / rho over a depth x (relative stress gradient of a notch, about 2/rho), some 5 % at 0.05 mm in a
 2 mm fillet. The largest principal nodal stress on the fillet surface itself is given beside it for
 information (``surface``). Where the maximum lies: the tooth, the radius from the member's axis, the
@@ -26,9 +26,9 @@ from pathlib import Path
 
 import numpy as np
 
-from fem.calculix.run import read_nodal_stress
-from fem.elastic import p2_shape
-from fem.readout import locate_points
+from ltca.fem.calculix.run import read_nodal_stress
+from ltca.fem.elastic import p2_shape
+from ltca.fem.readout import locate_points
 
 __all__ = ["DEPTH", "FACE_SPAN", "Member", "fillet_stress", "fillet_points", "largest_principal"]
 
@@ -43,7 +43,7 @@ class Member:
     """One gear of the deck: name, mesh (body frame), node offset in the deck (CalculiX id = offset + i + 1),
     transverse outline (xy (n, 2), kind, side codes) of tooth 0, the loaded side code (+1 right, -1 left),
     the number of teeth, the loaded teeth and the helical twist tan(beta) / r (rad/mm; the section at z is turned
-    by ``twist`` z, as in :mod:`fem.solids.full_gear`)."""
+    by ``twist`` z, as in :mod:`ltca.fem.solids.full_gear`)."""
     name: str
     mesh: object
     offset: int

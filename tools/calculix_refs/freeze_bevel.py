@@ -37,7 +37,7 @@ def run_bevel_freeze(case_path: str, fractions=(0.0, 0.4), out: str = "out/valid
                      progress: bool = True, torque: float | None = None, threads: int = 2) -> int:
     """The bevel comparison with the ladder of ``refine`` rungs at the first position and (``freeze`` a path) the
     frozen reference; exit status 0 when inside the bounds."""
-    from fem.calculix.run import ccx_path
+    from ltca.fem.calculix.run import ccx_path
     from ltca.errors import CaseError
     check_arguments(fractions, level, h0, threads)
     if not level <= refine <= 4:

@@ -37,7 +37,7 @@ def run_planetary_freeze(case_path: str, positions: list[float], torque_nm: floa
                          command: str | None = None, progress: bool = True, cache: str | None = None) -> int:
     """The planetary comparison at ``positions`` (deg), the ladder of ``refine`` rungs at the first one, and
     (``freeze`` a path) the frozen reference; returns 0 when every position is within the bounds, else 1."""
-    from fem.calculix.run import ccx_path
+    from ltca.fem.calculix.run import ccx_path
     from ltca.errors import CaseError
     from ltca.planetary.case import load_planetary_case
     case = load_planetary_case(case_path)

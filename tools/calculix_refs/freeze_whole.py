@@ -121,7 +121,7 @@ def run_whole_freeze(case_path: str, positions: list[float], out: str, freeze: s
     (``freeze`` a path) the frozen reference; returns 0 when every position is within the bounds, else 1.
 
     Raises ``CaseError`` on bad arguments (before looking for ``ccx``) and ``CcxNotFound`` when it is missing."""
-    from fem.calculix.run import ccx_path
+    from ltca.fem.calculix.run import ccx_path
     from ltca.case import load_case
     from ltca.errors import CaseError
     case = load_case(case_path)

@@ -88,8 +88,8 @@ def run_calculix_ladders(case_path: str, positions: list[float] | None, out: str
     it stopped. Prints a table, writes ``calculix.csv``, ``convergence.csv``, ``pressure_ladder.csv`` and
     ``calculix.png`` to ``out`` and returns 0 when all positions are within :data:`BOUNDS`, 1
     otherwise. Raises ``CaseError`` on a bad case or
-    position list and ``fem.calculix.run.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
-    from fem.calculix.run import ccx_path
+    position list and ``ltca.fem.calculix.run.CcxNotFound`` (with the install command) when ``ccx`` is missing."""
+    from ltca.fem.calculix.run import ccx_path
     from ltca.case import FIDELITIES, load_case
     from ltca.errors import CaseError
     from ltca.cylindrical.loaded_model import Fidelity, prepare

@@ -80,7 +80,7 @@ def run_whole_merge(case_path: str, positions: list[float], out: str, merge: str
 
     Raises ``CaseError`` on bad arguments (a position the file lacks, another case, another body) before looking
     for ``ccx``, and ``CcxNotFound`` when it is missing."""
-    from fem.calculix.run import ccx_path
+    from ltca.fem.calculix.run import ccx_path
     from ltca.case import FIDELITIES, load_case
     from ltca.cylindrical.loaded import solve_position
     from ltca.errors import CaseError

@@ -20,7 +20,7 @@ __all__ = ["ccx_version", "command_line", "finite", "run"]
 
 def ccx_version() -> str:
     """The first line of ``ccx -v`` that names the version."""
-    from fem.calculix.run import ccx_path
+    from ltca.fem.calculix.run import ccx_path
     out = subprocess.run([ccx_path(), "-v"], capture_output=True, text=True, timeout=30).stdout
     return next((ln.strip() for ln in out.splitlines() if "Version" in ln), out.strip())
 
@@ -41,7 +41,7 @@ def finite(v):
 
 def run(parser: argparse.ArgumentParser, work: Callable[[argparse.Namespace], int], argv: list[str] | None) -> int:
     """Parse ``argv`` and run ``work``; a ``CaseError`` or a missing ``ccx`` prints one line and returns 2."""
-    from fem.calculix.run import CcxNotFound
+    from ltca.fem.calculix.run import CcxNotFound
     from ltca.errors import CaseError
     a = parser.parse_args(argv)
     try:

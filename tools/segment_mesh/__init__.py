@@ -1,19 +1,19 @@
 """Tooth-segment solids of cylindrical gears meshed by gmsh (a few teeth on a slice of the rim), with a mesh
 cache keyed by the spec's hash.
 
-Not part of the installed package: the product meshes whole gear bodies (:mod:`fem.solids.gear_body`); a segment
+Not part of the installed package: the product meshes whole gear bodies (:mod:`ltca.fem.solids.gear_body`); a segment
 with free radial cut faces bends like a curved cantilever about its bore, so its stiffness depends on where it is
 cut. Kept for comparison with the whole body. The section comes from :mod:`tools.segment_mesh.section`, the gmsh
-construction from :mod:`tools.segment_mesh.mesher`; the mesh is a :class:`fem.solids.mesh_record.BodyMesh`.
+construction from :mod:`tools.segment_mesh.mesher`; the mesh is a :class:`ltca.fem.solids.mesh_record.BodyMesh`.
 """
 from __future__ import annotations
 
 import os
 import time
 
-from fem.solids.cache import load_cached, store_cached
-from fem.solids.mesh_record import BodyMesh
-from fem.solids.session import gmsh_session
+from ltca.fem.solids.cache import load_cached, store_cached
+from ltca.fem.solids.mesh_record import BodyMesh
+from ltca.fem.solids.session import gmsh_session
 
 from .mesher import mesh_with_gmsh
 from .spec import SegmentSpec

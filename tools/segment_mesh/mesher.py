@@ -2,14 +2,14 @@
 
 The internals behind :func:`tools.segment_mesh.build_segment`; the transverse section comes from
 :mod:`tools.segment_mesh.section`, the record of what to mesh from :mod:`tools.segment_mesh.spec`, the
-meshing and read-back from :mod:`fem.solids.gmsh_mesh`.
+meshing and read-back from :mod:`ltca.fem.solids.gmsh_mesh`.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from fem.solids.gmsh_mesh import background_size, fresh_model, mesh_labelled
-from fem.solids.planar import polyline_distance, rot2
+from ltca.fem.solids.gmsh_mesh import background_size, fresh_model, mesh_labelled
+from ltca.fem.solids.planar import polyline_distance, rot2
 
 from .section import SectionPiece, section_pieces
 from .spec import SegmentSpec
@@ -138,13 +138,13 @@ def mesh_with_gmsh(spec: SegmentSpec) -> tuple[np.ndarray, np.ndarray, dict[str,
     Parameters
     ----------
     spec : SegmentSpec
-        Geometry and mesh sizes. gmsh must be initialised (:func:`fem.solids.session.gmsh_session`); the
+        Geometry and mesh sizes. gmsh must be initialised (:func:`ltca.fem.solids.session.gmsh_session`); the
         model is removed and the previous model and options are restored on exit.
 
     Returns
     -------
     nodes, tets, facets
-        As the fields of :class:`fem.solids.mesh_record.BodyMesh`.
+        As the fields of :class:`ltca.fem.solids.mesh_record.BodyMesh`.
     """
     with fresh_model(f"segment_{spec.spec_hash}", _OPTIONS):
         import gmsh

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.solids.planar import rot2
+from ltca.fem.solids.planar import rot2
 
 from .spec import SegmentSpec
 

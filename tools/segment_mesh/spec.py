@@ -5,7 +5,7 @@ The transverse section is built from one tooth's dense outline (as produced by g
 for each included tooth; every run of equal (kind, side) codes becomes its own spline curve, so each flank,
 fillet and tip surface gets its own named facet group. The section is built in
 :mod:`tools.segment_mesh.section`, the solid and its mesh in :mod:`tools.segment_mesh.mesher`; the mesh is a
-:class:`fem.solids.mesh_record.BodyMesh` (conventions there).
+:class:`ltca.fem.solids.mesh_record.BodyMesh` (conventions there).
 
 Conventions
 -----------
@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem.solids.mesh_record import outline_hash
+from ltca.fem.solids.mesh_record import outline_hash
 
 __all__ = ["SegmentSpec"]
 
@@ -57,7 +57,7 @@ class SegmentSpec:
         Element order, 1 or 2.
     size_fields : tuple of str
         Extra gmsh ``MathEval`` size expressions in x, y, z (mm) combined with the graded sizes by their
-        minimum: local refinement, e.g. a band around contact lines (:func:`fem.solids.refinement.line_size_expression`).
+        minimum: local refinement, e.g. a band around contact lines (:func:`ltca.fem.solids.refinement.line_size_expression`).
     """
 
     outline: np.ndarray
