@@ -11,7 +11,7 @@ import sys
 import numpy as np
 import pytest
 
-from fem.solver import available_methods, factorize
+from ltca.fem.solver import available_methods, factorize
 from test_solver import beam  # noqa: F401  (the shared fixture)
 
 pytest.importorskip("cvxopt")
@@ -42,7 +42,7 @@ def test_auto_without_pypardiso_takes_cvxopt_and_says_so(beam, monkeypatch, capl
     methods = available_methods()
     assert "pardiso" not in methods and "cvxopt" in methods and methods[-1] == "splu"
     K, fixed, F, O = beam
-    with caplog.at_level(logging.INFO, logger="fem.solver"):
+    with caplog.at_level(logging.INFO, logger="ltca.fem.solver"):
         fac = factorize(K, fixed)
     assert fac.method == methods[0]
     assert any(methods[0] in r.getMessage() for r in caplog.records)
