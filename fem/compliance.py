@@ -35,11 +35,10 @@ from .elastic import assemble_stiffness
 from .fillet import fillet_points, fillet_size
 from .loads import patch_loads, patch_quadrature
 from .readout import interpolation_matrix, nodal_stress, stress_matrix
-from .solids import BodyMesh, GearBodySpec, build_gear_body
+from .solids import GearBodySpec, build_gear_body
 from .solver import factorize
 
-__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "body_mesh", "flank_compliance", "principal_max",
-           "body_spec"]
+__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "flank_compliance", "principal_max", "body_spec"]
 
 
 @dataclass(frozen=True)
@@ -195,18 +194,7 @@ def body_spec(profile, spec: ComplianceSpec) -> GearBodySpec:
                         fillets=tuple(f"fillet_{k}_{side}" for k in spec.loaded) if h_fillet else ())
 
 
-def body_mesh(profile, spec: ComplianceSpec, cache_dir=None) -> tuple[BodyMesh, float]:
-    """The meshed whole-gear body of a compliance spec (:func:`body_spec`) and the wall seconds it took.
-
-    Separate from :func:`body_compliance` so that one body can be meshed (gmsh, one thread) while the other body's
-    factorisation and solves run; one gmsh session at a time."""
-    t0 = time.perf_counter()
-    mesh = build_gear_body(body_spec(profile, spec), cache_dir=cache_dir)
-    return mesh, time.perf_counter() - t0
-
-
-def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None,
-                    mesh: tuple[BodyMesh, float] | None = None) -> BodyCompliance:
+def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None) -> BodyCompliance:
     """Mesh, assemble, factorise and load one cylindrical gear body; see the module docstring.
 
     Parameters
@@ -217,11 +205,11 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
         Mesh cache directory.
     progress : callable(str), optional
         Called with a short message at each step.
-    mesh : (BodyMesh, float), optional
-        This body's :func:`body_mesh` (mesh and seconds), made before; default: meshed here.
     """
     say = progress or (lambda msg: None)
-    mesh, t_mesh = mesh if mesh is not None else body_mesh(profile, spec, cache_dir)
+    t0 = time.perf_counter()
+    mesh = build_gear_body(body_spec(profile, spec), cache_dir=cache_dir)
+    t_mesh = time.perf_counter() - t0
     say(f"meshed z={profile.z}: {len(mesh.nodes)} nodes, {len(mesh.tets)} tets, {3 * len(mesh.nodes)} dofs "
         f"({t_mesh:.1f} s)")
     ns, nz = spec.grid

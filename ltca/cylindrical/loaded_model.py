@@ -6,12 +6,11 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ltca.fem.compliance import BodyCompliance, ComplianceSpec, body_compliance, body_mesh
+from ltca.fem.compliance import BodyCompliance, ComplianceSpec, body_compliance
 from ltca.geometry.cylindrical import arc_length
 
 from .model import PairModel
@@ -174,12 +173,8 @@ def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, c
     plan = plan or plan_bodies(model, fid, rolls, torque, say)
     timings = {"tca": plan.t_tca}
     if bodies is None:
-        # the gear is meshed (gmsh: one thread) while the pinion is assembled, factorised and solved
-        with ThreadPoolExecutor(1) as pool:
-            mesh1 = body_mesh(model.pinion, plan.spec1, cache_dir)
-            mesh2 = pool.submit(body_mesh, model.gear, plan.spec2, cache_dir)
-            body1 = body_compliance(model.pinion, plan.spec1, cache_dir, say, mesh=mesh1)
-            body2 = body_compliance(model.gear, plan.spec2, cache_dir, say, mesh=mesh2.result())
+        body1 = body_compliance(model.pinion, plan.spec1, cache_dir, say)
+        body2 = body_compliance(model.gear, plan.spec2, cache_dir, say)
     else:
         body1, body2 = bodies
         if body1.spec != plan.spec1 or body2.spec != plan.spec2:
