@@ -8,7 +8,13 @@ One factorisation serves many right-hand sides (the compliance of a gear body is
 - ``"pardiso-unsym"``: pypardiso's default real unsymmetric mode (``mtype=11``), kept for
   comparison and as a fallback.
 - ``"cholmod"``: scikit-sparse CHOLMOD (supernodal Cholesky), when importable.
+- ``"cvxopt"``: CHOLMOD (supernodal Cholesky, AMD ordering) as shipped in cvxopt's wheels with OpenBLAS, for
+  every platform pip serves (pypardiso is x86-64 only): ``pip install ltca[nomkl]``. cvxopt's dense solve takes
+  one right-hand side per pass over the factor, its sparse solve (:func:`_cvxopt`) several: the loads and the
+  observed rows are sparse, so they go through the sparse one.
 - ``"splu"``: scipy SuperLU; always available, far slower beyond ~50k dofs.
+
+``"auto"`` logs (module logger, INFO) which back-end factorised each matrix.
 
 Measured on the 2-core machine: see docs/design.md, "Measurements".
 
@@ -32,12 +38,15 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
+import logging
+
 import numpy as np
 import scipy.sparse as sp
 
 __all__ = ["Factorization", "factorize", "available_methods"]
 
-_METHODS = ("auto", "pardiso", "pardiso-unsym", "cholmod", "splu")
+_METHODS = ("auto", "pardiso", "pardiso-unsym", "cholmod", "cvxopt", "splu")
+_log = logging.getLogger(__name__)
 
 
 def available_methods() -> list[str]:
@@ -55,6 +64,11 @@ def available_methods() -> list[str]:
         out.append("cholmod")
     except ImportError:
         pass
+    try:
+        import cvxopt.cholmod  # noqa: F401
+        out.append("cvxopt")
+    except ImportError:
+        pass
     return out + ["splu"]
 
 
@@ -67,7 +81,7 @@ class Factorization:
     free : ndarray of int, (n_free,)
         Free dofs (the complement of the fixed dofs), sorted.
     method : str
-        Back-end used: ``"pardiso"``, ``"pardiso-unsym"``, ``"cholmod"`` or ``"splu"``.
+        Back-end used: ``"pardiso"``, ``"pardiso-unsym"``, ``"cholmod"``, ``"cvxopt"`` or ``"splu"``.
     n : int
         Full number of dofs, ``3 * N``.
     """
@@ -77,6 +91,7 @@ class Factorization:
     n: int
     _solve_free: Callable[[np.ndarray], np.ndarray] = field(repr=False)
     _release: Callable[[], None] | None = field(default=None, repr=False)
+    _solve_sparse: Callable[[sp.csc_matrix], np.ndarray] | None = field(default=None, repr=False)
 
     def solve(self, F: Any, observe: sp.spmatrix | np.ndarray | None = None,
               block: int | None = None) -> np.ndarray:
@@ -100,6 +115,8 @@ class Factorization:
             Displacements [mm], exactly 0 on fixed dofs.
         """
         vector = (not sp.issparse(F)) and np.ndim(F) == 1
+        if self._solve_sparse is not None and not vector and not sp.issparse(F):
+            F = sp.csc_matrix(np.asarray(F, dtype=float))   # loads on a few surface nodes: the sparse solve
         if sp.issparse(F):
             F = sp.csc_matrix(F)
         else:
@@ -124,8 +141,11 @@ class Factorization:
         reads = None if obs_free is None else _Gather(obs_free)
         for s in range(0, k, block):
             b = F[:, s:s + block][self.free]
-            b = b.toarray(order="F") if sp.issparse(b) else np.asfortranarray(b)
-            x = self._solve_free(b).reshape(b.shape)
+            if sp.issparse(b) and self._solve_sparse is not None:
+                x = self._solve_sparse(b)
+            else:
+                b = b.toarray(order="F") if sp.issparse(b) else np.asfortranarray(b)
+                x = self._solve_free(b).reshape(b.shape)
             if reads is None:
                 out[self.free, s:s + block] = x
             else:
@@ -139,8 +159,11 @@ class Factorization:
         obs_t = sp.csc_matrix(obs_free.T)
         loads = _Gather(sp.csr_matrix(F_free.T))
         for s in range(0, r, block):
-            b = obs_t[:, s:s + block].toarray(order="F")
-            y = self._solve_free(b).reshape(b.shape)
+            if self._solve_sparse is not None:
+                y = self._solve_sparse(obs_t[:, s:s + block])
+            else:
+                b = obs_t[:, s:s + block].toarray(order="F")
+                y = self._solve_free(b).reshape(b.shape)
             out[s:s + block] = (loads @ y).T
         return out
 
@@ -193,6 +216,49 @@ def _cholmod(Kff: sp.csr_matrix):
     return (lambda b: fac(b)), None
 
 
+def _cvxopt(Kff: sp.csr_matrix):
+    """CHOLMOD through cvxopt: supernodal ``P K P' = L L'`` of the lower triangle.
+
+    Returns ``solve(b)`` for dense b (m,) or (m, k), and ``solve_sparse(B)`` for a sparse B (m, k) giving a dense
+    (m, k) array. cvxopt's dense ``cholmod.solve`` calls CHOLMOD once per column, a pass over the whole factor for
+    each (memory-bound: about 0.09 s a column on a 68k-dof gear body), while its ``cholmod.spsolve`` hands CHOLMOD
+    all columns at once, which solves them a few at a time per pass."""
+    from cvxopt import cholmod, matrix, spmatrix
+
+    def cvx_sparse(A) -> spmatrix:
+        A = A.tocoo()
+        return spmatrix(matrix(A.data.astype(np.float64)), matrix(A.row.astype(np.int64)),
+                        matrix(A.col.astype(np.int64)), A.shape)
+
+    low = cvx_sparse(sp.tril(Kff))
+    options = dict(cholmod.options)
+    cholmod.options["supernodal"] = 2
+    try:
+        fac = cholmod.symbolic(low, uplo="L")
+        cholmod.numeric(low, fac)
+    finally:
+        cholmod.options.clear()
+        cholmod.options.update(options)
+    del low
+
+    def solve(b: np.ndarray) -> np.ndarray:
+        x = matrix(np.array(b, dtype=np.float64, order="F").reshape(b.shape[0], -1))
+        cholmod.solve(fac, x)
+        return np.asarray(x).reshape(b.shape)
+
+    def solve_sparse(B: sp.spmatrix) -> np.ndarray:
+        B = sp.csc_matrix(B)
+        out = np.zeros(B.shape, order="F")
+        for s in range(0, B.shape[1], 64):      # CHOLMOD takes 4 columns a pass: chunks only bound the memory
+            X = cholmod.spsolve(fac, cvx_sparse(B[:, s:s + 64]))
+            ptr, rows, vals = (np.asarray(a).ravel() for a in X.CCS)
+            cols = np.repeat(np.arange(X.size[1]), np.diff(ptr))
+            out[rows.astype(np.int64), s + cols] = vals
+        return out
+
+    return solve, None, solve_sparse
+
+
 def _splu(Kff: sp.csr_matrix):
     from scipy.sparse.linalg import splu
 
@@ -209,8 +275,8 @@ def factorize(K: sp.spmatrix, fixed_dofs: np.ndarray, method: str = "auto") -> F
         Symmetric positive semi-definite stiffness [N/mm], e.g. `fem.elastic.assemble_stiffness`.
     fixed_dofs : ndarray of int or bool, (n_fixed,) or (n,)
         Dofs held at zero (indices, or a boolean mask of length n). Must remove the rigid-body modes.
-    method : {"auto", "pardiso", "pardiso-unsym", "cholmod", "splu"}
-        Back-end; ``"auto"`` takes the first importable of pardiso, cholmod, splu.
+    method : {"auto", "pardiso", "pardiso-unsym", "cholmod", "cvxopt", "splu"}
+        Back-end; ``"auto"`` takes the first importable of pardiso, cholmod, cvxopt, splu and logs its choice.
 
     Returns
     -------
@@ -240,6 +306,7 @@ def factorize(K: sp.spmatrix, fixed_dofs: np.ndarray, method: str = "auto") -> F
     K = sp.csr_matrix(K, dtype=np.float64)
     if method == "auto":
         method = available_methods()[0]
+        _log.info("factorising %d free dofs with %s", free.size, method)
     # PARDISO's symmetric mode reads the upper triangle only
     Kff = _free_block(K, mask, upper=method == "pardiso")
     if method in ("pardiso", "pardiso-unsym"):
@@ -247,6 +314,10 @@ def factorize(K: sp.spmatrix, fixed_dofs: np.ndarray, method: str = "auto") -> F
         solve, release = pardiso_factor(Kff, symmetric=method == "pardiso")
     elif method == "cholmod":
         solve, release = _cholmod(Kff)
+    elif method == "cvxopt":
+        solve, release, solve_sparse = _cvxopt(Kff)
+        return Factorization(free=free, method=method, n=n, _solve_free=solve, _release=release,
+                             _solve_sparse=solve_sparse)
     else:
         solve, release = _splu(Kff)
     return Factorization(free=free, method=method, n=n, _solve_free=solve, _release=release)
