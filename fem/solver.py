@@ -35,10 +35,9 @@ Back-substitution (FZG C14 pinion body: 63k free dofs, 216 patch loads, 1476 obs
 """
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass, field
 from typing import Any, Callable
-
-import logging
 
 import numpy as np
 import scipy.sparse as sp
