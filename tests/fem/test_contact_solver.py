@@ -128,6 +128,7 @@ def test_max_iter_one_raises_contact_not_converged():
     assert "max_iter" in info.value.advice and isinstance(info.value, RuntimeError)
 
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("nx,ny", [(40, 25), (60, 50)])
 def test_timing(nx, ny):
     C, g0, h, load = _flank_problem(nx, ny, seed=6)

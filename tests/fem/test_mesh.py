@@ -280,6 +280,7 @@ def test_bad_input(outline, field, value):
         SegmentSpec(**args)
 
 
+@pytest.mark.heavy
 def test_timing_h05(outline, spur):
     xy, kind, side, *_ = outline
     spec = SegmentSpec(xy, kind, side, Z, TEETH, R_BORE, B, h_flank=0.5, h_body=4.0)

@@ -12,7 +12,9 @@ CYLINDRICAL = ["fzg_c14.toml", "helical_c14.toml", "internal_spur.toml", "fzg_c1
                "fzg_c14_modified.toml"]
 
 
-@pytest.mark.parametrize("name", CYLINDRICAL)
+#: the default tier runs the flagship case end to end; the heavy tier every cylindrical case
+@pytest.mark.parametrize("name", [n if n == "fzg_c14.toml" else pytest.param(n, marks=pytest.mark.heavy)
+                                  for n in CYLINDRICAL])
 def test_cylindrical_case_runs_and_writes_results(name, tmp_path):
     from ltca.driver import run_to_dir as run_case
     out = tmp_path / "out"

@@ -71,6 +71,7 @@ def results_nc(tmp_path_factory):
     return out / "results.nc"
 
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("check", ["check", "no-check"])
 def test_netcdf_writer_on_a_filling_disk(tmp_path, results_nc, check):
     if os.geteuid() != 0:

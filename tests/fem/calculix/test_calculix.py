@@ -86,6 +86,7 @@ def test_bad_positions_are_case_errors(tmp_path):
         run_calculix_validation(str(CASES / "fzg_c14.toml"), [40.0], str(tmp_path), progress=False)
 
 
+@pytest.mark.heavy
 @pytest.mark.calculix
 @needs_ccx
 def test_double_contact_against_calculix(fzg_lm, tmp_path):

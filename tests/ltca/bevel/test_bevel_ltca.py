@@ -175,6 +175,7 @@ def test_hard_cases_converge(pair, bodies, asm, torque):
         assert "toe" in res.edge_load()
 
 
+@pytest.mark.heavy
 def test_bevel_ltca_run_writes_outputs(tmp_path):
     """``ltca run`` of the bevel case: both flanks by the torque's sign, summary.json, results.nc, VTU, plots."""
     import json
@@ -202,6 +203,7 @@ def test_bevel_ltca_run_writes_outputs(tmp_path):
     assert json.loads((tmp_path / "summary.json").read_text())["case"]
 
 
+@pytest.mark.heavy
 def test_flat_te_pinion_converges_with_edge_contact(tmp_path):
     """A pinion synthesised with m21 near 0 (TE magnitude 1 arcsec, an eighth of Cao et al.'s): no parabola to absorb
     the transfer, so the pairs hand over at the flank edges; every position converges and the edges are named."""

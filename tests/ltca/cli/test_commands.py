@@ -8,6 +8,7 @@ import pytest
 from fixtures.paths import CASES, ROOT
 
 
+@pytest.mark.heavy
 def test_convergence_ladder_reports_time_and_error(tmp_path, capsys):
     from ltca.verify.convergence import run_convergence
     ladder = [("coarse", "coarse", {}), ("coarse, contact cells x 2", "coarse", {"cells_per_b": 6, "slices": 12}),

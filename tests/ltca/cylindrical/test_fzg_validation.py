@@ -122,6 +122,7 @@ def test_double_contact_pressures_match_local_hertz(fzg_lm, fzg_case, roll_deg):
     assert checked == 2
 
 
+@pytest.mark.heavy
 def test_loaded_te_does_not_depend_on_the_read_depth(fzg_case, fzg_model, tmp_path):
     """The near-field split must not depend on where the FE is read: pitch-point TE for d = 0.7 and 1.35 mm
     (default 1.01) within 0.5 % (a split with the cell half-space subtracted from a patch-loaded FE at one

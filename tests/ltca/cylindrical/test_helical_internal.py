@@ -26,7 +26,10 @@ def _te_ptp(case, tmp_path, n=12, fidelity="default"):
     return np.ptp(te) / model.pair.ratio * 206264.8, res
 
 
-def test_helical_te_smaller_than_spur_of_same_transverse_geometry(tmp_path):
+@pytest.mark.parametrize("fidelity", ["coarse", pytest.param("default", marks=pytest.mark.heavy)])
+def test_helical_te_smaller_than_spur_of_same_transverse_geometry(tmp_path, fidelity):
+    """The helical pair's loaded TE peak-to-peak is under 0.8 of the spur pair's of the same transverse geometry, at
+    the coarse fidelity (default tier) and the default one (heavy tier)."""
     helical = load_case(CASES / "helical_c14.toml")
     mt = helical.module / np.cos(helical.helix_angle)
     at = np.arctan(np.tan(helical.pressure_angle) / np.cos(helical.helix_angle))
@@ -36,17 +39,20 @@ def test_helical_te_smaller_than_spur_of_same_transverse_geometry(tmp_path):
         rack_addendum=helical.rack_addendum, rack_dedendum=helical.rack_dedendum,
         pinion=dataclasses.replace(helical.pinion, profile_shift=xt(helical.pinion.profile_shift)),
         gear=dataclasses.replace(helical.gear, profile_shift=xt(helical.gear.profile_shift)))
-    ptp_h, _ = _te_ptp(helical, tmp_path)
-    ptp_s, _ = _te_ptp(spur, tmp_path)
+    ptp_h, _ = _te_ptp(helical, tmp_path, fidelity=fidelity)
+    ptp_s, _ = _te_ptp(spur, tmp_path, fidelity=fidelity)
     print(f"loaded TE ptp: helical {ptp_h:.2f} arcsec, spur {ptp_s:.2f} arcsec")
     assert ptp_h < 0.8 * ptp_s
 
 
-def test_internal_pair_converges_with_concave_contact(tmp_path):
+@pytest.mark.parametrize("fidelity", ["coarse", pytest.param("default", marks=pytest.mark.heavy)])
+def test_internal_pair_converges_with_concave_contact(tmp_path, fidelity):
+    """The internal pair at the pitch point against concave-convex Hertz, at the coarse fidelity (default tier) and
+    the default one (heavy tier), with the same bounds."""
     case = load_case(CASES / "internal_spur.toml")
     model = build_model(case)
     assert model.gear.internal
-    fid = Fidelity.from_preset(FIDELITIES["default"], case.module)
+    fid = Fidelity.from_preset(FIDELITIES[fidelity], case.module)
     rolls = cycle_rolls(10, case.pinion.teeth)
     lm = prepare(model, fid, rolls, case.torques[0], cache_dir=tmp_path)
     res = analyse(lm, rolls, case.torques[0])

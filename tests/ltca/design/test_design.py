@@ -100,6 +100,7 @@ def _tiny(tmp_path):
     return p
 
 
+@pytest.mark.heavy
 def test_tiny_search_writes_results_and_resumes(tmp_path):
     from ltca.design import optimise
     case, out = _tiny(tmp_path), tmp_path / "out"

@@ -79,6 +79,7 @@ def _repeat(prepared, times: int) -> None:
             assert g.te_ptp_arcsec == e.te_ptp_arcsec and g.flank_pressure_mpa == e.flank_pressure_mpa, i
 
 
+@pytest.mark.heavy
 def test_pool_starts_beside_threaded_pardiso(prepared):
     _repeat(prepared, 2)
 

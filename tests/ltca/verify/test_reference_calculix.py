@@ -56,6 +56,9 @@ ROOT_REMEASURED = ("root_pinion", "root_gear")
 #: stored in the file) has its comparisons marked slow, for the fast suite's budget: FZG C14 and helical C14 are
 #: below it (helical C14's model is the session's ``helical_lm``)
 SLOW_COMPLIANCE_S = 120.0
+#: the cases whose comparisons run in the default tier (on the session's ``fzg_lm``); the others build or take a
+#: larger model of their own (the 20 mm bore variant, helical C14's ``helical_lm``) and run in the heavy tier
+DEFAULT_TIER_CASES = ("cases/fzg_c14.toml",)
 #: the CalculiX TE of a frozen reference changes by less than this over its ladder's last refinement
 TE_CONVERGED = 0.005
 _LM: dict = {}
@@ -175,6 +178,8 @@ def _cases():
     for path in REFERENCES:
         rec = _rec(path)
         slow = [pytest.mark.slow] if rec.get("ours_compliance_wall_s", 0.0) > SLOW_COMPLIANCE_S else []
+        if rec["case"] not in DEFAULT_TIER_CASES:
+            slow.append(pytest.mark.heavy)
         for i, ref in enumerate(rec["positions"]):
             for q in QUANTITIES:
                 if _reference_value(ref, q) is None:
