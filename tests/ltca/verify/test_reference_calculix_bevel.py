@@ -25,9 +25,10 @@ from fixtures.paths import REFERENCE, ROOT
 REFERENCES = sorted((REFERENCE).glob("spiral_bevel_calculix*.json"))
 BOUNDS = {"te_rel": 0.03, "share_abs": 0.03, "pressure_rel": 0.05}
 #: the default tier compares the session's coarse model (:func:`fixtures.bevel.bevel_lm_coarse`, built as
-#: :func:`ltca.verify.bevel_calculix.bevel_model` builds the default one) with the same reference: its coarser bodies
-#: are stiffer, the loaded TE about 1.5 % lower than at the default fidelity, so its TE bound is 4 %
-COARSE_BOUNDS = dict(BOUNDS, te_rel=0.04)
+#: :func:`ltca.verify.bevel_calculix.bevel_model` builds the default one) with the same reference. A displacement FE
+#: model is stiffer on a coarser mesh, so the coarse loaded TE lies below CalculiX's (by about 1.5 % more than the
+#: default fidelity's): its TE bound is one-sided, from 4 % below to CalculiX's value
+COARSE_BOUNDS = dict(BOUNDS, te_rel=(-0.04, 0.0))
 _LM: dict = {}
 
 
@@ -114,7 +115,10 @@ def _cases():
 def _compare(name: str, index: int, quantity: str, o: dict, bounds: dict):
     ref = _rec(name)["rows"][index]
     c = ref["ccx"]
-    if quantity == "te":
+    if quantity == "te" and isinstance(bounds["te_rel"], tuple):
+        lo, hi = bounds["te_rel"]
+        assert lo <= o["theta"] / c["theta"] - 1 <= hi, f"TE ours {o['theta']:.2f} vs CalculiX {c['theta']:.2f} arcsec"
+    elif quantity == "te":
         assert o["theta"] == pytest.approx(c["theta"], rel=bounds["te_rel"])
     elif quantity == "share":
         for j in set(o["share"]) | {int(k) for k in c["share"]}:
@@ -126,8 +130,8 @@ def _compare(name: str, index: int, quantity: str, o: dict, bounds: dict):
 @pytest.mark.parametrize("name,index,quantity", [p.values for p in _cases()],
                          ids=[p.id for p in _cases()])
 def test_coarse_model_against_frozen_calculix(name, index, quantity, bevel_lm_coarse):
-    """The session's coarse model of the shipped pair: loaded TE within 4 %, pair torque shares within 0.03,
-    interior peak pressure within 5 % of CalculiX."""
+    """The session's coarse model of the shipped pair: loaded TE from 4 % below to CalculiX's, pair torque shares
+    within 0.03, interior peak pressure within 5 % of CalculiX."""
     if _rec(name)["case"] != "cases/spiral_bevel_cao2008.toml":
         pytest.skip("the session's coarse model is the shipped pair's")
     ref = _rec(name)["rows"][index]
