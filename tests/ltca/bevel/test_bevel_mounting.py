@@ -3,7 +3,7 @@
 The blank of each FE body runs from the root cone down to the case's ``[mounting]``; the support facets lie on
 that cylinder and that plane (geometry, exact to rounding) and the case keys are range-checked against the blank.
 What the mounting does to the answer is guarded by the frozen CalculiX reference (whole members on the same seat
-and back face, ``tests/test_reference_calculix_bevel.py``): loaded TE within 3 % at the two-pair position
+and back face, ``tests/ltca/verify/test_reference_calculix_bevel.py``): loaded TE within 3 % at the two-pair position
 (a blank cut 1.2 whole depths under the root cone instead reads it 9.5 % low).
 """
 

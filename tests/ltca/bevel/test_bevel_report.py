@@ -1,6 +1,7 @@
 """``report.html`` of a bevel ``ltca run``: written by the kind's write step, self-contained (no external URL, no
 script, every image embedded), our results beside the ISO 10300 Method B1 nominal figures of every torque
-(the same numbers as :func:`ltca.bevel.iso10300.iso10300_b1`, hand-checked in tests/test_bevel_iso10300.py), and
+(the same numbers as :func:`ltca.bevel.iso10300.iso10300_b1`, hand-checked in
+tests/ltca/bevel/test_bevel_iso10300.py), and
 opened in a real headless Chromium where one is installed. One coarse run at 35 and 175 N m, 4 positions."""
 from __future__ import annotations
 

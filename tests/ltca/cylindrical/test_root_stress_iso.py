@@ -28,9 +28,9 @@ FZG C14, 200 N m: ISO sigma_F0 = 277.1 MPa pinion, 268.7 MPa gear. ISO's Y_F Y_S
 stress analysis, so a converged FE need not meet it exactly, and no literature bound for FE against ISO 6336-3 is
 claimed (none was found). The test guards our deviation from ISO, within 2.5 % around it: ours reads below ISO on
 both members, at the default fidelity pinion -4.4 %, gear -6.3 %, at the fine (``-m slow``) -4.8 % / -5.2 %. Our FE
-root stress itself is checked independently: converged over the fidelities (tests/test_commands.py, the read
+root stress itself is checked independently: converged over the fidelities (tests/ltca/cli/test_commands.py, the read
 fillets meshed at 0.4 of their radius, nodal-averaged stress: :mod:`fem.fillet`) and within 3 % of the whole-gear
-CalculiX root stress of FZG C14 and helical C14 (tests/test_reference_calculix.py).
+CalculiX root stress of FZG C14 and helical C14 (tests/ltca/verify/test_reference_calculix.py).
 """
 from __future__ import annotations
 

@@ -71,7 +71,7 @@ def test_pressure_floor_is_below_the_computed_flank_pressure():
     d = tomllib.loads(SHIPPED.read_text())
     floor = CylindricalBackend(d, parse_design(d, "cylindrical", 1)).pressure_floor()
     assert 850.0 < floor < 1050.0           # Hertz of 5.9 kN over two 14 mm lines, R up to ~8 mm: ~930 MPa
-    # FZG C14 at 200 N m (tests/test_fzg_validation.py): peak flank pressure about 1400 MPa
+    # FZG C14 at 200 N m (tests/ltca/cylindrical/test_fzg_validation.py): peak flank pressure about 1400 MPa
 
 
 def test_edge_constraint_no_lead_variable_can_meet_exits_2(tmp_path, capsys):
