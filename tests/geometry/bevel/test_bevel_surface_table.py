@@ -54,13 +54,13 @@ def test_table_shape_is_checked(pair):
         SurfaceTable(mg.P.exact_surface, mg.P.axial, (0, 1), (mg.P.Ai, mg.P.A0), shape=(5, 40))
 
 
-def test_loaded_cycle_with_and_without_the_table(pair):
+def test_loaded_cycle_with_and_without_the_table(pair, bevel_bodies_coarse):
     """The loaded TE and the peak pressure of a cycle (175 N m, coarse bodies) with the tabulated flanks equal the
     exact ones within 1e-3 arcsec and 0.01 %: the table is not a model change."""
-    from ltca.bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
+    from ltca.bevel.loaded_model import loaded_model
     from ltca.bevel.loaded import solve_position
     import geometry.bevel.gaps as gaps_module
-    bodies = prepare_bodies(pair, "concave", BevelFidelity.named("coarse"))
+    bodies = bevel_bodies_coarse
     phi = np.linspace(-0.5, 0.5, 3) * 2 * np.pi / pair.blank.pinion.z
     out = {}
     for table in (1e-7, None):

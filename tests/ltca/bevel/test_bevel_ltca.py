@@ -27,11 +27,11 @@ def pair(bevel_pair):
 
 
 @pytest.fixture(scope="module", params=["coarse", pytest.param("default", marks=pytest.mark.heavy)])
-def bodies(request, pair, bevel_bodies_coarse, tmp_path_factory):
-    """The drive flank's bodies at the coarse fidelity (the session's; 1.5 GB) and, in the heavy tier, at the
-    default one (5 GB): the checks below hold with the same bounds at both."""
+def bodies(request, pair, tmp_path_factory):
+    """The drive flank's bodies at the coarse fidelity (:func:`fixtures.bevel.bevel_bodies_coarse`; 1.5 GB) and, in
+    the heavy tier, at the default one (5 GB): the checks below hold with the same bounds at both."""
     if request.param == "coarse":
-        return bevel_bodies_coarse
+        return request.getfixturevalue("bevel_bodies_coarse")
     return prepare_bodies(pair, "concave", BevelFidelity.named(request.param), cache_dir=tmp_path_factory.mktemp("m"))
 
 
@@ -221,13 +221,13 @@ def test_flat_te_pinion_converges_with_edge_contact(tmp_path):
 
 
 @pytest.mark.heavy
-def test_interior_peak_pressure_converges_edge_peak_does_not(pair, bevel_lm_coarse, lm, request):
+def test_interior_peak_pressure_converges_edge_peak_does_not(pair, lm, request, tmp_path):
     """Beyond the edge band (0.12 module) the peak pressure agrees between the coarse and the default fidelity within
     2 % at 175 N m; the peak of the cells next to an edge does not converge (singular at a sharp edge)."""
     from ltca.bevel.results import edge_band
     if request.node.callspec.params["bodies"] == "coarse":
         pytest.skip("compares the coarse fidelity with the default one")
-    coarse = bevel_lm_coarse
+    coarse = loaded_model(pair, prepare_bodies(pair, "concave", BevelFidelity.named("coarse"), cache_dir=tmp_path))
     band = edge_band(pair.blank.data.module)
     peaks = []
     for m in (coarse, lm):

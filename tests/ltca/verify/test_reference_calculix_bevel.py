@@ -24,7 +24,7 @@ from fixtures.paths import REFERENCE, ROOT
 
 REFERENCES = sorted((REFERENCE).glob("spiral_bevel_calculix*.json"))
 BOUNDS = {"te_rel": 0.03, "share_abs": 0.03, "pressure_rel": 0.05}
-#: the default tier compares the session's coarse model (:func:`fixtures.bevel.bevel_lm_coarse`, built as
+#: the default tier compares the coarse model (:func:`fixtures.bevel.bevel_lm_coarse`, built as
 #: :func:`ltca.verify.bevel_calculix.bevel_model` builds the default one) with the same reference. A displacement FE
 #: model is stiffer on a coarser mesh, so the coarse loaded TE lies below CalculiX's (by about 1.5 % more than the
 #: default fidelity's): its TE bound is one-sided, from 4 % below to CalculiX's value
@@ -130,10 +130,10 @@ def _compare(name: str, index: int, quantity: str, o: dict, bounds: dict):
 @pytest.mark.parametrize("name,index,quantity", [p.values for p in _cases()],
                          ids=[p.id for p in _cases()])
 def test_coarse_model_against_frozen_calculix(name, index, quantity, bevel_lm_coarse):
-    """The session's coarse model of the shipped pair: loaded TE from 4 % below to CalculiX's, pair torque shares
+    """The coarse model of the shipped pair: loaded TE from 4 % below to CalculiX's, pair torque shares
     within 0.03, interior peak pressure within 5 % of CalculiX."""
     if _rec(name)["case"] != "cases/spiral_bevel_cao2008.toml":
-        pytest.skip("the session's coarse model is the shipped pair's")
+        pytest.skip("the coarse model is the shipped pair's")
     ref = _rec(name)["rows"][index]
     _compare(name, index, quantity, _ours(name, ref["fraction"], bevel_lm_coarse), COARSE_BOUNDS)
 
