@@ -128,6 +128,7 @@ def test_ours_resolves_the_wheel_tip_corner_of_pair_minus_8():
     assert u["share"]["-8"] == pytest.approx(0.0547, rel=0.05) and u["te_um"] == pytest.approx(55.15, rel=0.01)
 
 
+@pytest.mark.slow      # our 32 + 32-tooth model of the reference: about 5 min and 8 GB
 def test_calculix_internal_pairs_split_the_wheel_band_at_its_tip_corner(tmp_path):
     """The CalculiX deck of the internal pair (no ccx): every tooth's wheel band is split in two, the tip-corner
     zone (tip land and the flank's first rows, radius < r_tip + max(CORNER, 2 h)) a slave against the satellite's
