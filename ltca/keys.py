@@ -1,7 +1,7 @@
 """``ltca keys``: the reference of every key of every case kind, walked from the kind's tables in the one validation
 layer (:func:`ltca.validation.table_reference`: type, unit, default, allowed range, meaning), so it cannot drift;
 the ``[design]`` table of ``ltca optimise`` from :func:`ltca.design.schema.design_key_reference`.
-``docs/case_keys.md`` is this module's Markdown output (tests/test_results_torques.py checks it is up to date);
+``docs/case_keys.md`` is this module's Markdown output (tests/ltca/test_results_torques.py checks it is up to date);
 :func:`kind_json_schema` gives an editor a kind's JSON Schema (``ltca keys --json-schema KIND``).
 """
 from __future__ import annotations

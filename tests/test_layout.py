@@ -8,6 +8,7 @@ to the module ``p.name`` when that is one of ours, else to ``p``. A failure prin
 from __future__ import annotations
 
 import ast
+import functools
 import re
 from pathlib import Path
 
@@ -47,6 +48,7 @@ def _resolve(name: str, modules) -> str | None:
     return None
 
 
+@functools.cache                                  # parsed once per session; the tests only read it
 def import_graph(root: Path = ROOT, packages: tuple[str, ...] = PACKAGES) -> dict[str, dict[str, int]]:
     """Module -> {imported module of ours: line of the first such import} over ``packages``."""
     modules = _modules(root, packages)

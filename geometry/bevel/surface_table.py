@@ -19,7 +19,8 @@ the equation of meshing a few tenths of a millimetre from where it is the flank;
 
 Every cell is also checked at build time: the spline against the smooth branch at the cell's centre; a cell off by
 more than ``tol`` (position, mm) or ``10 tol`` (normal), or with an unsolved node, is marked, with its neighbours,
-and left to the exact solve (measured in ``tests/test_bevel_surface_table.py`` at random points: the largest error,
+and left to the exact solve (measured in ``tests/geometry/bevel/test_bevel_surface_table.py`` at random points: the
+largest error,
 not the centre's).
 """
 from __future__ import annotations

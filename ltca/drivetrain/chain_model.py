@@ -17,7 +17,7 @@ pp. 48-52, Gleason-system generator Modul ZFTKK250X5. Method (Sect. 3):
 
 The paper's own arithmetic departs from these rules in places; a case can give the printed value of
 zk, fp or F (and ``turns_factor``) per element to reproduce its tables, and ``honour_printed=False``
-recomputes everything by the rules (see the case file and tests/test_chain.py for each departure).
+recomputes everything by the rules (see the case file and tests/ltca/drivetrain/test_chain.py for each departure).
 """
 from __future__ import annotations
 

@@ -9,7 +9,8 @@ run per position at the contact-zone size h0 / 1.5^``level``.  Bounds: TE 3 %, s
 CalculiX.
 
 CalculiX's ladder of contact-zone sizes and the frozen reference read by
-``tests/test_reference_calculix_bevel.py`` are maintainer tooling (``tools/calculix_refs/freeze_bevel.py`` and
+``tests/ltca/verify/test_reference_calculix_bevel.py`` are maintainer tooling
+(``tools/calculix_refs/freeze_bevel.py`` and
 ``recompare_bevel.py``, not installed), built on :func:`compare_positions` and :func:`table_lines`.
 """
 from __future__ import annotations

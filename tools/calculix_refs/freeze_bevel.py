@@ -4,7 +4,8 @@ The comparison of ``ltca validate --reference calculix`` on a ``[bevel]`` case (
 with CalculiX's convergence check at the first position: a ladder of contact-zone sizes h0, h0/1.5, h0/1.5^2 ...
 up to ``refine`` (Richardson estimate over the last three); the other positions at rung ``level``. The first
 position is compared at the finest rung. The CalculiX values are written as a frozen reference with their
-provenance (command, mesh sizes, CalculiX version, date), read by ``tests/test_reference_calculix_bevel.py``;
+provenance (command, mesh sizes, CalculiX version, date), read by
+``tests/ltca/verify/test_reference_calculix_bevel.py``;
 :mod:`tools.calculix_refs.recompare_bevel` re-evaluates ours on such a file after a change of our model.
 """
 from __future__ import annotations

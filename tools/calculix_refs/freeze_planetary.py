@@ -5,7 +5,7 @@ The comparison of ``ltca validate --reference calculix-whole`` on a ``[satellite
 (:mod:`ltca.verify.planetary_whole`) at every position, then the first position with the contact band refined
 ``refine`` times by 1.5 (CalculiX's convergence ladder). The CalculiX results (finest rung at the first position)
 are written with their provenance (command, CalculiX version, date, deck hashes, mesh sizes) as a frozen reference
-(JSON), compared by ``tests/test_reference_calculix_planetary.py``.
+(JSON), compared by ``tests/ltca/verify/test_reference_calculix_planetary.py``.
 """
 from __future__ import annotations
 

@@ -7,7 +7,7 @@ position, then CalculiX's own convergence check at the first position: the conta
 provenance: CalculiX version, date, deck hash, mesh sizes, nodes and elements, wall times, the refinement
 ladder and the command that regenerates them, and our figures at the time. A read-out (flank peak, root stress)
 that moves more than 5 % over the ladder's last refinement is named under ``unconverged`` with its numbers:
-recorded, not for comparison. ``tests/test_reference_calculix.py`` compares ours with these files.
+recorded, not for comparison. ``tests/ltca/verify/test_reference_calculix.py`` compares ours with these files.
 """
 from __future__ import annotations
 
