@@ -3,7 +3,7 @@
 - ``_generated/validation_tables.md``: the reference figures and the CalculiX comparisons, read from the files of
   ``tests/reference/`` (never copied by hand), included by ``validation.md``;
 - the check that ``case_keys.md`` is the output of ``ltca keys --markdown`` (a warning otherwise: with ``-W`` the
-  build fails, as ``tests/test_keys.py`` does).
+  build fails, as ``tests/ltca/test_keys.py`` does).
 """
 from __future__ import annotations
 
@@ -97,7 +97,7 @@ def whole_gear_tables() -> str:
     bounds = _test_bounds(test, "BOUNDS")
     remeasured = _test_bounds(test, "ROOT_REMEASURED")
     out = ["### Cylindrical pairs against whole-gear CalculiX models\n",
-           "Bounds of `tests/test_reference_calculix.py` (relative; share absolute): "
+           "Bounds of `tests/ltca/verify/test_reference_calculix.py` (relative; share absolute): "
            + ", ".join(f"{k} {v:g}" for k, v in bounds.items()) + ". The test compares ltca's live figures with "
            "CalculiX's converged estimate; the tables show the finest CalculiX model of each file beside ltca's "
            "figures stored with it (`ours_at_freeze`); a difference outside its bound is a strict expected failure "

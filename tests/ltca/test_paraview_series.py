@@ -2,7 +2,7 @@
 PVD lists the asked number of steps with three parts each, meshio reads every part back, the flank pressure's
 peak at each position is the solver's peak there, and the parts sit where the bodies are (the pressure surface
 on the pinion body, its loaded bins on the gear body). The cylindrical series is checked in
-tests/test_report_outputs.py, the planetary one in tests/test_planetary.py."""
+tests/ltca/cylindrical/test_report_outputs.py, the planetary one in tests/ltca/planetary/test_planetary.py."""
 from __future__ import annotations
 
 import json
