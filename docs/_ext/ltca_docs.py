@@ -93,7 +93,7 @@ def iso6336_table() -> str:
 
 def whole_gear_tables() -> str:
     """Every ``*_calculix_whole.json``: per position CalculiX's figures beside ours stored with it."""
-    test = ROOT / "tests" / "test_reference_calculix.py"
+    test = ROOT / "tests" / "ltca" / "verify" / "test_reference_calculix.py"
     bounds = _test_bounds(test, "BOUNDS")
     remeasured = _test_bounds(test, "ROOT_REMEASURED")
     out = ["### Cylindrical pairs against whole-gear CalculiX models\n",
