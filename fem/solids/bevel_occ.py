@@ -40,7 +40,7 @@ from .gmsh_mesh import extract_mesh, fresh_model
 from .session import gmsh_session
 from .mesh_record import BodyMesh
 
-__all__ = ["BevelSolidSpec", "build_bevel_solid", "polar", "flank_t"]
+__all__ = ["BevelSolidSpec", "build_bevel_solid", "member_solid", "polar", "flank_t"]
 
 _VERSION = "bevel-occ-4"
 
@@ -176,6 +176,12 @@ def _fused(spec: BevelSolidSpec, shift: float) -> list:
     blank = occ.revolve([(2, occ.addPlaneSurface([loop]))], 0, 0, 0, 0, 0, 1, 2 * np.pi)
     fused, _ = occ.fuse([d for d in blank if d[0] == 3], teeth)
     return fused
+
+
+def member_solid(spec: BevelSolidSpec) -> list:
+    """The member's OCC volume(s) in the current gmsh model (every tooth fused with the blank), (dim, tag) pairs;
+    gmsh must be initialised with a model current. The solid that :func:`build_bevel_solid` meshes."""
+    return _fused(spec, _shift(spec))
 
 
 def _cad_key(spec: BevelSolidSpec) -> str:

@@ -20,7 +20,7 @@ from ltca.geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
 from ..validation import DesignError, Int, List, Num, OneOrList, Str, Table, check_kind, check_table
-from .model import BevelMounting
+from .model import BevelMounting, face_limit
 
 __all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data", "check_bevel_torques"]
 
@@ -227,11 +227,11 @@ def _mounting(m: dict, blank, f: str | None) -> BevelMounting:
                         f"below {d_toe - 2 * blank.whole_depth:.2f} mm (the pinion's root diameter at the toe "
                         f"{d_toe:.2f} mm less two whole depths: the blank must carry the teeth)", f)
     z_heel = blank.root_point("gear", "heel")[0]
-    lo, hi = z_heel + 0.3 * blank.whole_depth, z_heel + 20 * blank.whole_depth
+    lo, hi = z_heel + 0.3 * blank.whole_depth, min(z_heel + 20 * blank.whole_depth, 0.8 * face_limit(blank))
     if out.gear_mounting_distance is not None and not lo <= out.gear_mounting_distance <= hi:
         raise CaseError("mounting.gear_mounting_distance_mm", out.gear_mounting_distance,
                         f"in [{lo:.2f}, {hi:.2f}] mm (0.3 to 20 whole depths behind the gear's heel root at "
-                        f"{z_heel:.2f} mm from the pitch apex)", f)
+                        f"{z_heel:.2f} mm from the pitch apex, and short of where the front cone meets the axis)", f)
     return out
 
 
