@@ -21,7 +21,7 @@ import numpy as np
 from .cases import Case, load_case
 from .errors import CaseError
 
-__all__ = ["MemberSolid", "ExportedMember", "StepExport", "member_solids", "export_step"]
+__all__ = ["MemberSolid", "ExportedMember", "StepExport", "member_solids", "export_step", "fe_body_volume"]
 
 log = logging.getLogger(__name__)
 
@@ -108,7 +108,7 @@ def _bevel(case: Case) -> tuple[MemberSolid, ...]:
         thick = mb.mean_normal_thickness / (np.cos(bl.data.spiral_angle) * mb.mean_pitch_radius)
         spec = BevelSolidSpec(fl["concave"], fl["convex"], mb.z, mb.pitch_angle, off, "concave", thick,
                               float(np.interp(0.0, rn, fl["concave"].u)), float(fl["concave"].v[jm]),
-                              blank_outline(body), {}, np.zeros((1, 3)), 1.0, 5.0)
+                              blank_outline(body), {}, np.zeros((1, 3)), 1.0, 5.0, sections=11, rows=13)
         out.append(MemberSolid(name, "bevel", mb.z, spec, body))
     return tuple(out)
 
@@ -155,7 +155,10 @@ def export_step(case: Case | str | Path, out_dir: str | Path,
     stem = "".join(c if c.isalnum() or c in "-_." else "_" for c in case.name) or case.kind
     members = []
     for ms in member_solids(case):
-        build = (lambda s=ms.spec: gear_solid(s)) if ms.kind == "cylindrical" else (lambda s=ms.spec: member_solid(s))
+        if ms.kind == "cylindrical":
+            build = (lambda s=ms.spec: gear_solid(s))
+        else:
+            build = (lambda s=ms.spec: member_solid(s, say))
         try:
             res = write_step(build, out / f"{stem}_{ms.member}.step")
         except Exception as exc:      # an OCC failure names the member, not a kernel stack
@@ -166,3 +169,28 @@ def export_step(case: Case | str | Path, out_dir: str | Path,
         say(f"{ms.member}: {ms.z} teeth, volume {res.volume / 1e3:.2f} cm^3 -> {res.path} ({res.seconds:.1f} s)")
         members.append(ExportedMember(ms.member, ms.z, res.path, res.volume, res.seconds))
     return StepExport(case.name, case.kind, tuple(members))
+
+
+def fe_body_volume(ms: MemberSolid, cache_dir=None) -> float:
+    """The volume of the member's FE body with every tooth, mm^3, from its mesh record (straight-edged tetrahedra).
+
+    A cylindrical body is meshed with every tooth (:func:`ltca.fem.solids.gear_body.build_gear_body`). A bevel body
+    meshes a few teeth on its blank (:func:`ltca.fem.solids.bevel_body.build_bevel_body`): its tetrahedra are split
+    at the root cone (outline edge 0) into the blank and the teeth, and the volume is the blank's plus z times the
+    mean tooth's."""
+    from ltca.fem.solids.step import mesh_volume
+    if ms.kind == "cylindrical":
+        from ltca.fem.solids.gear_body import build_gear_body
+        return mesh_volume(build_gear_body(ms.body, cache_dir))
+    from ltca.fem.solids.bevel_body import blank_outline, build_bevel_body
+    m = build_bevel_body(ms.body, cache_dir)
+    X = m.nodes[m.tets[:, :4]]
+    v = np.abs(np.einsum("ij,ij->i", np.cross(X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]), X[:, 3] - X[:, 0])) / 6.0
+    c = X.mean(axis=1)
+    O = blank_outline(ms.body)
+    d = O[1] - O[0]
+
+    def side(P):
+        return d[0] * (P[..., 1] - O[0, 1]) - d[1] * (P[..., 0] - O[0, 0])
+    tooth = side(np.column_stack([c[:, 2], np.hypot(c[:, 0], c[:, 1])])) * side(O[2]) < 0
+    return float(v[~tooth].sum() + ms.z * v[tooth].sum() / len(ms.body.teeth))

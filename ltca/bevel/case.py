@@ -185,6 +185,7 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
     except ValueError as exc:
         raise DesignError(f"bevel blank: {exc}", ("bevel.face_width_mm", "bevel.module_mm", "bevel.pinion_teeth",
                                                   "bevel.gear_teeth", "bevel.cutter_radius_mm"), file=f) from None
+    _check_pitch_angles(b, blank, f)
     mounting = _mounting(c.get("mounting") or {}, blank, f)
     cuts = _cuts(b["settings"], basic, f) if given else None
     name = c["case"]["name"] or stem
@@ -216,6 +217,24 @@ def _cuts(sheets: dict, basic: BevelBasicData, f: str | None) -> dict:
         except ValueError as exc:
             raise CaseError(f"bevel.settings.{member}", "sheet", str(exc), f) from None
     return out
+
+
+def _check_pitch_angles(b: dict, blank, f: str | None) -> None:
+    """The gear's face cone must open outward (face angle below 90 deg): beyond, it is an internal (or crown-like)
+    bevel gear, which the blank, cradle and FE body here do not model.  tan(delta2) = sin(S) / (z1/z2 + cos(S))
+    gives the largest shaft angle S for the teeth."""
+    g = blank.gear
+    if g.face_angle < 0.5 * np.pi - 1e-6:
+        return
+    z1, z2 = b["pinion_teeth"], b["gear_teeth"]
+    S = float(np.radians(b.get("shaft_angle_deg", 90.0)))
+    room = 0.5 * np.pi - (g.face_angle - g.pitch_angle)          # the largest pitch angle with face angle < 90
+    # the shaft angle at which delta2 = room: sin(S) cos(room) - cos(S) sin(room) = (z1/z2) sin(room)
+    s_max = float(np.degrees(room + np.arcsin(min(1.0, z1 / z2 * np.sin(room)))))
+    raise CaseError("bevel.shaft_angle_deg", round(float(np.degrees(S)), 3),
+                    f"at most {np.floor(10 * s_max - 5) / 10:.1f} deg for {z1}/{z2} teeth (there the gear's face "
+                    f"angle, now {np.degrees(g.face_angle):.1f} deg, reaches 90 deg: an internal bevel gear is not "
+                    "modelled); or more pinion teeth", f)
 
 
 def _mounting(m: dict, blank, f: str | None) -> BevelMounting:
