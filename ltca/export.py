@@ -1,27 +1,27 @@
 """Solid models of a case's members: every tooth, as a STEP file each, for CAD, CAM and other FE codes.
 
 A cylindrical member is the solid of :func:`ltca.fem.solids.full_gear.gear_solid` (the generated transverse
-outline of every tooth, with its modifications' nominal form, extruded or lofted along the helix; the bore, or an
-internal gear's outer rim; the web of a webbed member); a bevel member the solid of
+outline of every tooth, extruded or lofted along the helix; flank modifications, of micrometres, are not in the
+solid; the bore, or an internal gear's outer rim; the web of a webbed member); a bevel member the solid of
 :func:`ltca.fem.solids.bevel_occ.member_solid` (every tooth lofted through exact points of both generated flanks,
 fused with the blank revolved about the axis). Each solid has the blank of our FE body of that member (the same
 bore, rim and web; a bevel member's blank down to its mounting, :class:`ltca.bevel.model.BevelMounting`), so its
-volume is the FE body's with every tooth (:func:`member_solids` returns both specs; the tests compare them).
-Frames: each member's body frame (z along its axis; a bevel member's origin at the pitch apex), mm.
+volume is the FE body's with every tooth (:func:`member_solids` returns both specs, :func:`fe_body_volume` the FE
+figure). Frames: each member's body frame (z along its axis; a bevel member's origin at the pitch apex), mm.
 """
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 
 from .cases import Case, load_case
 from .errors import CaseError
 
-__all__ = ["MemberSolid", "ExportedMember", "StepExport", "member_solids", "export_step", "fe_body_volume"]
+__all__ = ["ExportedMember", "MemberSolid", "StepExport", "export_step", "fe_body_volume", "member_solids"]
 
 log = logging.getLogger(__name__)
 

@@ -71,9 +71,9 @@ def grid(n: int, seed: int = 7) -> list[dict]:
     u = qmc.Halton(d=5, scramble=True, seed=seed).random(n)
     out = []
     for i, (a, r, s, g, c) in enumerate(u):
-        z1 = int(round(6 + a * 34))
+        z1 = round(6 + a * 34)
         ratio = 1.0 + r * 5.0
-        z2 = max(z1, int(round(z1 * ratio)))
+        z2 = max(z1, round(z1 * ratio))
         sigma = 60.0 + g * 60.0
         S = np.radians(sigma)
         g2 = np.arctan2(np.sin(S), z1 / z2 + np.cos(S))
@@ -82,8 +82,8 @@ def grid(n: int, seed: int = 7) -> list[dict]:
         b = min(0.3 * A0, 10 * m)
         rc = (0.6 + 0.6 * c) * (A0 - b / 2)
         torque = 350.0 * (b / 25.4) * (z1 * m / (12 * 5.08)) ** 2
-        out.append(dict(i=i, z1=z1, z2=z2, m=m, b=b, beta=45.0 * s, sigma=sigma, rc=rc, ell=0.2 * b, torque=torque,
-                        ratio=z2 / z1, cutter_factor=0.6 + 0.6 * c))
+        out.append({"i": i, "z1": z1, "z2": z2, "m": m, "b": b, "beta": 45.0 * s, "sigma": sigma, "rc": rc,
+                    "ell": 0.2 * b, "torque": torque, "ratio": z2 / z1, "cutter_factor": 0.6 + 0.6 * c})
     return out
 
 
@@ -92,7 +92,7 @@ def _run(args: list[str], timeout: float) -> dict:
     t0 = time.perf_counter()
     try:
         p = subprocess.run([sys.executable, "-m", "ltca.cli", *args], capture_output=True, text=True, env=env,
-                           timeout=timeout, cwd=str(ROOT))
+                           timeout=timeout, cwd=str(ROOT), check=False)
         status, err = p.returncode, p.stderr
     except subprocess.TimeoutExpired:
         status, err = "timeout", ""
@@ -104,10 +104,13 @@ def _run(args: list[str], timeout: float) -> dict:
             "seconds": round(time.perf_counter() - t0, 1)}
 
 
-def sweep(n: int, out: Path, timeout: float = 900.0, progress=print) -> list[dict]:
+def sweep(n: int, out: Path, timeout: float = 900.0, progress=print, only=None) -> list[dict]:
+    """Run the first ``n`` pairs of :func:`grid` (or those of them whose index is in ``only``) into ``out``."""
     out.mkdir(parents=True, exist_ok=True)
     rows = []
     for g in grid(n):
+        if only and g["i"] not in only:
+            continue
         case = out / f"pair_{g['i']:02d}.toml"
         case.write_text(CASE.format(**g))
         tca = _run(["tca", str(case), "--out", str(out / f"tca_{g['i']:02d}")], timeout)
@@ -134,8 +137,8 @@ def _write(rows: list[dict], out: Path) -> None:
     ok = sum(r["tca_status"] == 0 and r["run_status"] == 0 for r in rows)
     named = sum(r["agree"] and r["tca_status"] == 2 and bool(r["tca_field"]) for r in rows)
     bad = sum(r["tca_traceback"] or r["run_traceback"] or r["tca_warning"] or r["run_warning"] for r in rows)
-    lines = [f"pairs {len(rows)}: run {ok}, exit 2 naming a field {named}, disagree "
-             f"{sum(not r['agree'] for r in rows)}, traceback or warning {bad}", "",
+    lines = [(f"pairs {len(rows)}: run {ok}, exit 2 naming a field {named}, disagree "
+              f"{sum(not r['agree'] for r in rows)}, traceback or warning {bad}"), "",
              "| # | z1/z2 | spiral deg | shaft deg | rc/Am | tca | run | field / message |", "|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['i']} | {r['z1']}/{r['z2']} | {r['beta']:.1f} | {r['sigma']:.1f} | {r['cutter_factor']:.2f} | "
@@ -149,13 +152,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", default="bevel_sweep")
     ap.add_argument("--only", type=int, nargs="*", help="run only these pair indices")
     a = ap.parse_args(argv)
-    if a.only:
-        global grid
-        full = grid
-
-        def grid(n, seed=7):       # noqa: F811 - a subset of the same sequence
-            return [g for g in full(n, seed) if g["i"] in a.only]
-    rows = sweep(a.pairs, Path(a.out))
+    rows = sweep(a.pairs, Path(a.out), only=a.only)
     print((Path(a.out) / "sweep.md").read_text())
     return 0 if all(not (r["tca_traceback"] or r["run_traceback"]) for r in rows) else 1
 

@@ -14,9 +14,9 @@ import contextlib
 import os
 import sys
 import time
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Iterator
 
 import numpy as np
 
@@ -24,7 +24,7 @@ from .gmsh_mesh import fresh_model
 from .mesh_record import BodyMesh
 from .session import gmsh_session
 
-__all__ = ["StepSolid", "write_step", "step_volume", "mesh_volume"]
+__all__ = ["StepSolid", "mesh_volume", "step_volume", "write_step"]
 
 _OPTIONS = {"General.NumThreads": 2, "Geometry.Tolerance": 1e-6, "Geometry.OCCParallel": 1}
 
