@@ -174,14 +174,20 @@ def export_step(case: Case | str | Path, out_dir: str | Path,
 def fe_body_volume(ms: MemberSolid, cache_dir=None) -> float:
     """The volume of the member's FE body with every tooth, mm^3, from its mesh record (straight-edged tetrahedra).
 
-    A cylindrical body is meshed with every tooth (:func:`ltca.fem.solids.gear_body.build_gear_body`). A bevel body
+    A cylindrical body is meshed with every tooth (:func:`ltca.fem.solids.gear_body.build_gear_body`); a solid disc
+    over at most 6 ``h_body`` of its face width, scaled to the whole width (its transverse sections are congruent:
+    the same outline, turned along a helix), so that a wide gear meshes in minutes. A bevel body
     meshes a few teeth on its blank (:func:`ltca.fem.solids.bevel_body.build_bevel_body`): its tetrahedra are split
     at the root cone (outline edge 0) into the blank and the teeth, and the volume is the blank's plus z times the
     mean tooth's."""
     from ltca.fem.solids.step import mesh_volume
     if ms.kind == "cylindrical":
+        from dataclasses import replace
+
         from ltca.fem.solids.gear_body import build_gear_body
-        return mesh_volume(build_gear_body(ms.body, cache_dir))
+        b = ms.body.face_width
+        part = b if ms.body.rim is not None else min(b, 6.0 * ms.body.h_body)
+        return mesh_volume(build_gear_body(replace(ms.body, face_width=part), cache_dir)) * b / part
     from ltca.fem.solids.bevel_body import blank_outline, build_bevel_body
     m = build_bevel_body(ms.body, cache_dir)
     X = m.nodes[m.tets[:, :4]]
