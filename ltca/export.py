@@ -80,8 +80,8 @@ def _cylindrical(case: Case) -> tuple[MemberSolid, ...]:
                             internal=bool(p.internal))
         teeth = tuple(range(-(p.z // 2), p.z - p.z // 2))
         body = GearBodySpec(xy, kind.astype(np.int8), side.astype(np.int8), p.z, teeth, r_bore, model.face_width,
-                            twist, bool(p.internal), rim=web, far_teeth="full", h_flank=0.3 * module,
-                            h_body=0.6 * module)
+                            twist, bool(p.internal), rim=web, far_teeth="full", h_flank=0.15 * module,
+                            h_body=0.3 * module)
         out.append(MemberSolid(name, "cylindrical", p.z, spec, body))
     return tuple(out)
 
@@ -174,7 +174,8 @@ def export_step(case: Case | str | Path, out_dir: str | Path,
 def fe_body_volume(ms: MemberSolid, cache_dir=None) -> float:
     """The volume of the member's FE body with every tooth, mm^3, from its mesh record (straight-edged tetrahedra).
 
-    A cylindrical body is meshed with every tooth (:func:`ltca.fem.solids.gear_body.build_gear_body`); a solid disc
+    A cylindrical body is meshed with every tooth (:func:`ltca.fem.solids.gear_body.build_gear_body`, at the
+    ``body`` spec's sizes: 0.15 module at the teeth, 0.3 module inside, finer than an analysis's); a solid disc
     over at most 6 ``h_body`` of its face width, scaled to the whole width (its transverse sections are congruent:
     the same outline, turned along a helix), so that a wide gear meshes in minutes. A bevel body
     meshes a few teeth on its blank (:func:`ltca.fem.solids.bevel_body.build_bevel_body`): its tetrahedra are split
