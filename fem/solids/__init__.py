@@ -6,7 +6,8 @@ compliance path (:mod:`ltca.fem.compliance`) consumes. Cylindrical gears (spur, 
 whole gear body (:class:`GearBodySpec`, :mod:`ltca.fem.solids.gear_body`: 360 deg rim, web and hub, held at the bore or
 the outer rim), optionally refined around contact lines (:mod:`ltca.fem.solids.refinement`); spiral bevel members
 (:mod:`ltca.fem.solids.bevel_body`); the independent whole-gear solids of the CalculiX cross-check
-(:mod:`ltca.fem.solids.full_gear`, :mod:`ltca.fem.solids.bevel_occ`). The shared gmsh steps (fresh model, size field,
+(:mod:`ltca.fem.solids.full_gear`, :mod:`ltca.fem.solids.bevel_occ`), which :mod:`ltca.fem.solids.step` also writes as
+STEP files. The shared gmsh steps (fresh model, size field,
 meshing and read-back) are :mod:`ltca.fem.solids.gmsh_mesh`, the plane geometry of transverse sections
 :mod:`ltca.fem.solids.planar`.
 

@@ -39,7 +39,7 @@ from ltca.geometry.flank import Flank
 
 from .mesh_record import BodyMesh, outline_hash
 
-__all__ = ["BevelBodySpec", "build_bevel_body", "convex_shift"]
+__all__ = ["BevelBodySpec", "build_bevel_body", "convex_shift", "blank_outline"]
 
 _VERSION = "bevel-mapped-3"        # 2: tooth rows graded towards the root (DEPTH_GRADING); 3: 1.5, not 2.2
 
@@ -235,6 +235,17 @@ def _bottom(spec: BevelBodySpec, Zt: np.ndarray, Rt: np.ndarray) -> tuple[np.nda
     if np.any(Rb <= 0) or np.any((Rt[0] - Rb) * np.sign(Rt[0, 0] - Rb[0]) < 0):
         raise ValueError(f"support = {spec.support!r}: the blank's bottom crosses the axis or the root cone")
     return Zb, Rb
+
+
+def blank_outline(spec: BevelBodySpec) -> np.ndarray:
+    """The body's blank in the axial section: the polygon (4, 2) of (Z, rho), mm, root cone toe -> heel, then the
+    heel's and the toe's bottom corners (the support, or ``rim_depth`` under the root cone), as the mesh has it."""
+    fl = spec.concave
+    L = np.array([float(fl.v[0]), float(fl.v[-1])])
+    Tg, Lg = np.meshgrid(_depth_rows(spec), L, indexing="ij")
+    Zt, Rt = axial_target(fl, Tg, Lg)
+    Zb, Rb = _bottom(spec, Zt, Rt)
+    return np.array([[Zt[0, 0], Rt[0, 0]], [Zt[0, -1], Rt[0, -1]], [Zb[-1], Rb[-1]], [Zb[0], Rb[0]]])
 
 
 def _kuhn(corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

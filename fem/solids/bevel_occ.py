@@ -40,7 +40,7 @@ from .gmsh_mesh import extract_mesh, fresh_model
 from .mesh_record import BodyMesh
 from .session import gmsh_session
 
-__all__ = ["BevelSolidSpec", "build_bevel_solid", "polar", "flank_t"]
+__all__ = ["BevelSolidSpec", "build_bevel_solid", "member_solid", "polar", "flank_t"]
 
 _VERSION = "bevel-occ-4"
 
@@ -170,12 +170,40 @@ def _fused(spec: BevelSolidSpec, shift: float) -> list:
     teeth = [(3, tooth)] + [occ.copy([(3, tooth)])[0] for _ in order]
     for k, dt in zip(order, teeth[1:]):
         occ.rotate([dt], 0, 0, 0, 0, 0, 1, k * 2 * np.pi / spec.z)
+    fused, _ = occ.fuse(_blank(spec), teeth)
+    return fused
+
+
+def _blank(spec: BevelSolidSpec) -> list:
+    """The blank: the axial-section polygon ``outline`` revolved through 360 deg, its seam opposite tooth 0."""
+    import gmsh
+    occ = gmsh.model.occ
     O = np.asarray(spec.outline, float)
-    pts = [occ.addPoint(-r, 0.0, zz) for zz, r in O]        # the revolution's seam opposite tooth 0
+    pts = [occ.addPoint(-r, 0.0, zz) for zz, r in O]
     loop = occ.addCurveLoop([occ.addLine(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))])
     blank = occ.revolve([(2, occ.addPlaneSurface([loop]))], 0, 0, 0, 0, 0, 1, 2 * np.pi)
-    fused, _ = occ.fuse([d for d in blank if d[0] == 3], teeth)
-    return fused
+    return [d for d in blank if d[0] == 3]
+
+
+def member_solid(spec: BevelSolidSpec, progress=None) -> list:
+    """The whole member as one OCC volume in the current gmsh model, (dim, tag) pairs; gmsh must be initialised
+    with a model current.
+
+    The teeth of :func:`build_bevel_solid`'s solid, fused with the blank one at a time: one fuse of all the teeth
+    at once (the meshed solid, whose far teeth carry no load) can lose a whole tooth; one at a time keeps every
+    tooth (tests/test_step_export.py compares the volume with the FE body's), at about the same cost."""
+    import gmsh
+    occ = gmsh.model.occ
+    say = progress or (lambda m: None)
+    tooth = (3, _tooth(spec, _shift(spec)))
+    teeth = [tooth] + [occ.copy([tooth])[0] for _ in range(1, spec.z)]
+    for k, t in enumerate(teeth[1:], 1):
+        occ.rotate([t], 0, 0, 0, 0, 0, 1, k * 2 * np.pi / spec.z)
+    solid = _blank(spec)
+    for k, t in enumerate(teeth):
+        solid = [d for d in occ.fuse(solid, [t])[0] if d[0] == 3]
+        say(f"  tooth {k + 1}/{spec.z} fused")
+    return solid
 
 
 def _cad_key(spec: BevelSolidSpec) -> str:

@@ -34,7 +34,7 @@ from .mesh_record import BodyMesh
 from .planar import polyline_distance, rot2
 from .session import gmsh_session
 
-__all__ = ["FullGearSpec", "build_full_gear"]
+__all__ = ["FullGearSpec", "build_full_gear", "gear_solid"]
 
 _KIND = {0: "root", 1: "fillet", 2: "flank", 3: "tip"}
 _SIDE = {-1: "left", 0: "", 1: "right"}
@@ -256,6 +256,12 @@ def _solid(spec: FullGearSpec, runs) -> list[tuple[int, int]]:
     occ.remove([e for d in (2, 1, 0) for e in gmsh.model.getEntities(d) if e not in closure])
     occ.synchronize()
     return keep
+
+
+def gear_solid(spec: FullGearSpec) -> list[tuple[int, int]]:
+    """The gear's OCC volume(s) in the current gmsh model, (dim, tag) pairs; gmsh must be initialised with a model
+    current. The solid that :func:`build_full_gear` meshes (its size and label fields do not enter)."""
+    return _solid(spec, _runs(spec))
 
 
 def _labels(spec: FullGearSpec, runs, vol) -> dict[int, str]:

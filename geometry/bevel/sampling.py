@@ -34,6 +34,24 @@ def _bilinear(grid: np.ndarray, t_grid: np.ndarray, L_grid: np.ndarray, t: np.nd
             + a * b * grid[i + 1, j + 1])
 
 
+def _retry_from_nodes(flank: Flank, fc, Z, rho, t, L, x, ok, tol):
+    """Newton again from each corner node of the grid cell, for the targets whose first solve did not converge
+    (near the blade profile's kink between edge radius and flank, the interpolated start can fall on the wrong
+    branch and Newton steps back and forth across it)."""
+    params = np.asarray(flank.meta["params"])
+    tg, Lg = np.asarray(flank.u, float), np.asarray(flank.v, float)
+    for di in (0, 1):
+        for dj in (0, 1):
+            bad = np.flatnonzero(~ok)
+            if not len(bad):
+                return x, ok
+            i = np.clip(np.searchsorted(tg, t[bad]) - 1, 0, len(tg) - 2) + di
+            j = np.clip(np.searchsorted(Lg, L[bad]) - 1, 0, len(Lg) - 2) + dj
+            xb, okb = solve_axial_points(fc, Z[bad], rho[bad], params[i, j], tol=tol, max_iter=80)
+            x[bad[okb]], ok[bad[okb]] = xb[okb], True
+    return x, ok
+
+
 def axial_target(flank: Flank, t: np.ndarray, L: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Axial position Z and radius rho (mm) of depth fraction ``t`` and cone distance ``L`` (mm).
 
@@ -83,6 +101,8 @@ def flank_at(flank: Flank, t: np.ndarray, L: np.ndarray, tol: float = 1e-11
     Z, rho = axial_target(flank, tf, Lf)
     x0 = _bilinear(np.asarray(flank.meta["params"]), np.asarray(flank.u), np.asarray(flank.v), tf, Lf)
     x, ok = solve_axial_points(fc, Z, rho, x0, tol=tol)
+    if not ok.all():
+        x, ok = _retry_from_nodes(flank, fc, Z, rho, tf, Lf, x, ok, tol)
     if not ok.all():
         raise MeshingError(f"no generated point on the {flank.side} flank at {int((~ok).sum())} of {ok.size} "
                            f"targets, t in [{tf[~ok].min():.3f}, {tf[~ok].max():.3f}], L in "

@@ -323,8 +323,9 @@ def _exact_gear_rotation(P: _Member, G: _Member, r2: np.ndarray, ang2: np.ndarra
         r_h = G.to_mesh(r2, ang2 + s2 * g2)
         g1, _, _, _, ok = _gap(P, r_h, phi1, s1, mask=False)
         eps = 1e-7                                  # d(pinion gap)/d(gear rotation), by a forward difference
-        d = (g1 - _gap(P, G.to_mesh(r2, ang2 + s2 * (g2 + eps)), phi1, s1, mask=False)[0]) / eps
-        step = np.where(ok & np.isfinite(d) & (np.abs(d) > 1e-12), g1 / np.where(d != 0, d, 1.0), 0.0)
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):     # points off the flank: inf - inf
+            d = (g1 - _gap(P, G.to_mesh(r2, ang2 + s2 * (g2 + eps)), phi1, s1, mask=False)[0]) / eps
+            step = np.where(ok & np.isfinite(d) & (np.abs(d) > 1e-12), g1 / np.where(d != 0, d, 1.0), 0.0)
         g2 = g2 + step
     return np.where(np.isfinite(g2), g2, np.inf)
 

@@ -54,14 +54,21 @@ def undercut_check(fc: FlankCut, blank: BevelBlank, member: str, n: int = 41) ->
     A0, Ai, Am = blank.outer_cone_distance, blank.inner_cone_distance, blank.mean_cone_distance
     g = mb.pitch_angle
     # parameter box: the generating points of the mean, toe and heel pitch points set theta and psi
-    X = []
-    for L in (Ai, Am, A0):
+    def pitch_point(L: float, start: np.ndarray | None) -> np.ndarray:
         Z, rho = np.array([L * np.cos(g)]), np.array([L * np.sin(g)])
         x, ok = solve_axial_points(fc, Z, rho, _guess(fc, Z[0], rho[0])[None])
+        if not ok[0] and start is not None:
+            # from the mean point's solution along the pitch cone (the crude start misses a toe far from the mean)
+            x, L0 = start[None], Am
+            for Lk in np.linspace(L0, L, 5)[1:]:
+                x, ok = solve_axial_points(fc, np.array([Lk * np.cos(g)]), np.array([Lk * np.sin(g)]), x)
+                if not ok[0]:
+                    break
         if not ok[0]:
             raise ValueError(f"member = {member!r}: no generated point on the pitch cone at L = {L:.3f} mm")
-        X.append(x[0])
-    X = np.array(X)
+        return x[0]
+    xm = pitch_point(Am, None)
+    X = np.array([pitch_point(Ai, xm), xm, pitch_point(A0, xm)])
     depth = mb.addendum + mb.dedendum
     u = np.linspace(fc.cutter.u_min, X[1, 0] + 1.2 * depth, n)
     pad = 0.15 * abs(X[2, 1] - X[0, 1])

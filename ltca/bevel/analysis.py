@@ -11,9 +11,9 @@ import numpy as np
 
 from ltca.geometry.bevel.blank import design_blank
 from ltca.geometry.bevel.design import synthesize_pinion
-from ltca.geometry.bevel.generation import standard_gear_cut
+from ltca.geometry.bevel.generation import MeshingError, standard_gear_cut
 from ltca.geometry.bevel.tca import RAD_PER_ARCSEC as ARCSEC
-from ltca.geometry.bevel.tca import Assembly, BevelPair
+from ltca.geometry.bevel.tca import Assembly, BevelPair, ContactError
 
 from ..errors import CaseError
 from ..validation import DesignError
@@ -21,7 +21,7 @@ from .case import BevelCase, check_bevel_torques
 from .loaded import BevelPosition, solve_position
 from .loaded_model import BevelBodies, BevelFidelity, loaded_model, prepare_bodies
 
-__all__ = ["build_pair", "cycle_positions", "analyse_torque", "BevelPlan", "BevelRun", "plan", "execute"]
+__all__ = ["build_pair", "synthesis_error", "cycle_positions", "analyse_torque", "BevelPlan", "BevelRun", "plan", "execute"]
 
 FLANK = {"concave": "working", "convex": "coast"}
 
@@ -35,6 +35,20 @@ def build_pair(case: BevelCase) -> BevelPair:
     gear = standard_gear_cut(bl)
     pin, _ = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
     return BevelPair(bl, gear, pin)
+
+
+def synthesis_error(case: BevelCase, exc: Exception, file: str | None = None) -> DesignError:
+    """The user's design (targets, blank, cutter) has no solution in the cradle model: the error (exit 2) that
+    names the inputs, the same for ``ltca tca`` and ``ltca run``."""
+    side = "working" if "concave" in str(exc) else "coast" if "convex" in str(exc) else "working/coast"
+    asm = case.assembly or {}
+    mounted = [f"assembly.{key}" for name, key in (("E", "E_mm"), ("P", "P_mm"), ("G", "G_mm"),
+                                                   ("d_sigma", "sigma_deg")) if asm.get(name, 0.0) != 0.0]
+    return DesignError(f"spiral bevel synthesis/TCA failed ({type(exc).__name__}: {str(exc)[:160]})",
+                       (*mounted, f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
+                        f"bevel.{side}.ellipse_major_mm", "bevel.spiral_angle_deg", "bevel.cutter_radius_mm"),
+                       ("smaller assembly errors, or " if mounted else "") +
+                       "move the targets towards the shipped case's values", file=file)
 
 
 def cycle_positions(n: int, z1: int) -> np.ndarray:
@@ -118,7 +132,10 @@ def execute(p: BevelPlan, progress=None, cache: str | None = None, store=None) -
     case = p.case
     timings = {}
     t0 = time.perf_counter()
-    pair = build_pair(case)
+    try:
+        pair = build_pair(case)
+    except (ContactError, MeshingError, ValueError) as exc:
+        raise synthesis_error(case, exc, getattr(case, "file", None)) from None
     timings["synthesis"] = time.perf_counter() - t0
     bodies: dict[str, BevelBodies] = {}
     runs, lines = {}, []

@@ -20,7 +20,7 @@ from ltca.geometry.bevel.tca import RAD_PER_ARCSEC
 
 from ..errors import CaseError
 from ..validation import DesignError, Int, List, Num, OneOrList, Str, Table, check_kind, check_table
-from .model import BevelMounting
+from .model import BevelMounting, face_limit
 
 __all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data", "check_bevel_torques"]
 
@@ -185,6 +185,7 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
     except ValueError as exc:
         raise DesignError(f"bevel blank: {exc}", ("bevel.face_width_mm", "bevel.module_mm", "bevel.pinion_teeth",
                                                   "bevel.gear_teeth", "bevel.cutter_radius_mm"), file=f) from None
+    _check_pitch_angles(b, blank, f)
     mounting = _mounting(c.get("mounting") or {}, blank, f)
     cuts = _cuts(b["settings"], basic, f) if given else None
     name = c["case"]["name"] or stem
@@ -218,6 +219,24 @@ def _cuts(sheets: dict, basic: BevelBasicData, f: str | None) -> dict:
     return out
 
 
+def _check_pitch_angles(b: dict, blank, f: str | None) -> None:
+    """The gear's face cone must open outward (face angle below 90 deg): beyond, it is an internal (or crown-like)
+    bevel gear, which the blank, cradle and FE body here do not model.  tan(delta2) = sin(S) / (z1/z2 + cos(S))
+    gives the largest shaft angle S for the teeth."""
+    g = blank.gear
+    if g.face_angle < 0.5 * np.pi - 1e-6:
+        return
+    z1, z2 = b["pinion_teeth"], b["gear_teeth"]
+    S = float(np.radians(b.get("shaft_angle_deg", 90.0)))
+    room = 0.5 * np.pi - (g.face_angle - g.pitch_angle)          # the largest pitch angle with face angle < 90
+    # the shaft angle at which delta2 = room: sin(S) cos(room) - cos(S) sin(room) = (z1/z2) sin(room)
+    s_max = float(np.degrees(room + np.arcsin(min(1.0, z1 / z2 * np.sin(room)))))
+    raise CaseError("bevel.shaft_angle_deg", round(float(np.degrees(S)), 3),
+                    f"at most {np.floor(10 * s_max - 5) / 10:.1f} deg for {z1}/{z2} teeth (there the gear's face "
+                    f"angle, now {np.degrees(g.face_angle):.1f} deg, reaches 90 deg: an internal bevel gear is not "
+                    "modelled); or more pinion teeth", f)
+
+
 def _mounting(m: dict, blank, f: str | None) -> BevelMounting:
     """``[mounting]``: the shaft seat inside the pinion's toe, the gear's back face behind its heel."""
     out = BevelMounting(m.get("pinion_seat_diameter_mm"), m.get("gear_mounting_distance_mm"))
@@ -227,11 +246,11 @@ def _mounting(m: dict, blank, f: str | None) -> BevelMounting:
                         f"below {d_toe - 2 * blank.whole_depth:.2f} mm (the pinion's root diameter at the toe "
                         f"{d_toe:.2f} mm less two whole depths: the blank must carry the teeth)", f)
     z_heel = blank.root_point("gear", "heel")[0]
-    lo, hi = z_heel + 0.3 * blank.whole_depth, z_heel + 20 * blank.whole_depth
+    lo, hi = z_heel + 0.3 * blank.whole_depth, min(z_heel + 20 * blank.whole_depth, 0.8 * face_limit(blank))
     if out.gear_mounting_distance is not None and not lo <= out.gear_mounting_distance <= hi:
         raise CaseError("mounting.gear_mounting_distance_mm", out.gear_mounting_distance,
                         f"in [{lo:.2f}, {hi:.2f}] mm (0.3 to 20 whole depths behind the gear's heel root at "
-                        f"{z_heel:.2f} mm from the pitch apex)", f)
+                        f"{z_heel:.2f} mm from the pitch apex, and short of where the front cone meets the axis)", f)
     return out
 
 

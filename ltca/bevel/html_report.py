@@ -83,7 +83,7 @@ def _factor_table(iso: Iso10300B1) -> list[tuple[str, str]]:
             ("profile shift / thickness coefficients x_hm1 / x_sm1", f"{p.x_hm:.4f} / {round(p.x_sm, 9) + 0.0:.4f}")]
 
 
-def report_context(case, case_path: str, head: dict, virtual: VirtualGears, figures: list[Iso10300B1],
+def report_context(case, case_path: str, head: dict, virtual: VirtualGears | None, figures: list[Iso10300B1],
                    plots_dir: Path) -> dict:
     """Everything the template shows; ``head`` is the run's summary (``torques`` records, ``warnings``,
     ``iso10300`` rows), ``virtual`` the pair's virtual cylindrical gears, ``figures`` the ISO figures per
@@ -106,8 +106,8 @@ def report_context(case, case_path: str, head: dict, virtual: VirtualGears, figu
     return {"case_name": case.name, "fidelity": head.get("fidelity", ""), "positions": head.get("positions"),
             "torques": [f"{r['torque_nm']:g}" for r in records],
             "written": _dt.datetime.now().isoformat(timespec="seconds"), "command": f"ltca run {case_path}",
-            "records": records, "iso": head.get("iso10300", []), "virtual": _virtual_table(virtual),
-            "factors": _factor_table(figures[0]),
+            "records": records, "iso": head.get("iso10300", []), "virtual": _virtual_table(virtual) if virtual else [],
+            "factors": _factor_table(figures[0]) if figures else [],
             "plots": embedded_plots(plots_dir, PLOTS), "warnings": head.get("warnings", []), "assembly": asm,
             "max_residual": max(float(r.get("max_torque_residual", 0.0)) for r in records),
             "converged": all(r.get("converged", False) for r in records), "inputs": inputs,
@@ -125,13 +125,18 @@ def write_bevel_report(stage: Path, case, pair, head: dict, case_path: str) -> l
     the run's plots); returns the comparison rows."""
     from ..outputs import atomic_path
     records = head["torques"]
-    figures = [iso10300_b1(pair.blank, r["torque_nm"], case.young, case.poisson, _edge_radii(pair, r["torque_nm"]))
-               for r in records]
+    try:
+        figures = [iso10300_b1(pair.blank, r["torque_nm"], case.young, case.poisson,
+                               _edge_radii(pair, r["torque_nm"])) for r in records]
+        virtual = virtual_gears(pair.blank)
+    except ValueError as exc:       # a pair outside the standard's formulae here: the report without them
+        figures, virtual = [], None
+        head.setdefault("warnings", []).append(f"ISO 10300 Method B1 not computed for this pair: {exc}")
     rows = iso_rows(records, figures)
     head["iso10300"] = rows
     head["iso10300_factors"] = {f"{f.torque_nm:g}": {k: v for k, v in f.as_dict().items()
                                                      if k not in ("pinion", "gear")} for f in figures}
-    ctx = report_context(case, case_path, head, virtual_gears(pair.blank), figures, Path(stage))
+    ctx = report_context(case, case_path, head, virtual, figures, Path(stage))
     with atomic_path(Path(stage) / "report.html") as tmp:
         Path(tmp).write_text(render_report(ctx), encoding="utf-8")
     return rows

@@ -136,15 +136,16 @@ def virtual_gears(blank, b_eff: float | None = None) -> VirtualGears:
     Parameters
     ----------
     blank : BevelBlank
-        Shaft angle 90 deg (checked).
+        Any shaft angle: the formulae are the general ones of Annex A in delta1, delta2 (A.3, A.4 are their 90 deg
+        forms); both pitch angles below 90 deg (checked).
     b_eff : float, optional
         Effective face width, mm; default 0.85 b (an assumption: the standard takes it from the loaded pattern).
     """
     d = blank.data
-    if abs(d.shaft_angle - 0.5 * math.pi) > 1e-9:
-        raise ValueError(f"shaft angle {math.degrees(d.shaft_angle):g} deg: the Method B1 formulas here are for "
-                         "90 deg")
     p, g = blank.pinion, blank.gear
+    if not max(p.pitch_angle, g.pitch_angle) < 0.5 * math.pi - 1e-6:
+        raise ValueError(f"pitch angles {math.degrees(p.pitch_angle):g} and {math.degrees(g.pitch_angle):g} deg: "
+                         "the virtual cylindrical gears d_m / cos(delta) need both below 90 deg")
     Rm = blank.mean_cone_distance
     b = blank.face_width
     b_eff = 0.85 * b if b_eff is None else float(b_eff)

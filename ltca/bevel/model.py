@@ -68,9 +68,22 @@ class BevelMounting:
         if self.gear_mounting_distance is None:
             g = blank.member("gear").pitch_angle
             face = heel2[0] + np.sin(g) * 1.2 * blank.whole_depth
+            if face >= 0.8 * face_limit(blank):
+                # a gear of small pitch angle: a back face behind the heel would cut its toe off (the front cone
+                # reaches the axis first), so it sits on a shaft seat as a pinion does
+                return {"pinion": ("seat", float(seat)),
+                        "gear": ("seat", float(0.45 * blank.root_point("gear", "toe")[1]))}
         else:
             face = self.gear_mounting_distance
         return {"pinion": ("seat", float(seat)), "gear": ("face", float(face))}
+
+
+def face_limit(blank) -> float:
+    """The largest axial position of the gear's back mounting face (mm from the pitch apex): where the gear's front
+    cone, continued down from the toe's root, reaches the axis."""
+    g = blank.member("gear").pitch_angle
+    toe = blank.root_point("gear", "toe")
+    return float(toe[0] + toe[1] * np.tan(g)) if g < 0.5 * np.pi - 1e-9 else float("inf")
 
 
 @dataclass

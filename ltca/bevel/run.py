@@ -17,6 +17,7 @@ from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, Contact
 from ltca.geometry.bevel.undercut import undercut_check
 
 from ..validation import DesignError
+from .analysis import synthesis_error
 from .case import load_bevel_case
 
 __all__ = ["run_bevel_tca", "plot_bevel", "bevel_benchmark", "settings_sheet_toml"]
@@ -95,16 +96,7 @@ def bevel_tca_summary(case, file: str | None = None) -> tuple[dict, BevelPair, d
     try:
         return _tca(case)
     except (ContactError, MeshingError, ValueError) as exc:
-        # the user's design (targets, blank, cutter) has no solution in the cradle model: exit 2 naming the inputs
-        side = "working" if "concave" in str(exc) else "coast" if "convex" in str(exc) else "working/coast"
-        asm = case.assembly or {}
-        mounted = [f"assembly.{key}" for name, key in (("E", "E_mm"), ("P", "P_mm"), ("G", "G_mm"),
-                                                       ("d_sigma", "sigma_deg")) if asm.get(name, 0.0) != 0.0]
-        raise DesignError(f"spiral bevel synthesis/TCA failed ({type(exc).__name__}: {str(exc)[:160]})",
-                          (*mounted, f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
-                           f"bevel.{side}.ellipse_major_mm", "bevel.spiral_angle_deg", "bevel.cutter_radius_mm"),
-                          ("smaller assembly errors, or " if mounted else "") +
-                          "move the targets towards the shipped case's values", file=file) from None
+        raise synthesis_error(case, exc, file) from None
 
 
 def _tca(case) -> tuple[dict, BevelPair, dict]:
