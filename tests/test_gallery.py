@@ -37,6 +37,7 @@ def test_the_gallery_has_an_example_per_capability():
         assert "import ltca" in text, f"{p.name}: examples use the public API"
 
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("script", EXAMPLES, ids=[p.stem for p in EXAMPLES])
 def test_example_runs(script: Path, tmp_path: Path):
     env = {**os.environ, "MPLBACKEND": "Agg",

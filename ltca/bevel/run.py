@@ -16,7 +16,6 @@ from ltca.geometry.bevel.sheet import member_sheet, sheet_toml
 from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca, to_pitch_coords
 from ltca.geometry.bevel.undercut import undercut_check
 
-from ..validation import DesignError
 from .analysis import synthesis_error
 from .case import load_bevel_case
 

@@ -12,7 +12,7 @@ import pytest
 
 from tools.bevel_sweep import CASE, grid
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[3]
 
 
 def _case(tmp_path: Path, i: int, **change) -> Path:
@@ -45,10 +45,9 @@ def test_shaft_angle_limit_names_a_working_value(tmp_path):
 def test_iso10300_virtual_gears_any_shaft_angle(tmp_path):
     """ISO 10300-1 Annex A at a 61 deg shaft angle: d_v = d_m / cos(delta), z_v = z / cos(delta) with the pitch
     angles of tan(delta1) = sin(S) / (z2/z1 + cos(S))."""
-    from ltca.geometry.bevel.blank import design_blank
-
     from ltca.bevel.case import load_bevel_case
     from ltca.bevel.iso10300 import virtual_gears
+    from ltca.geometry.bevel.blank import design_blank
     c = load_bevel_case(_case(tmp_path, 4))
     bl = design_blank(c.basic)
     S, z1, z2 = c.basic.shaft_angle, c.basic.z1, c.basic.z2
@@ -62,11 +61,10 @@ def test_iso10300_virtual_gears_any_shaft_angle(tmp_path):
 def test_flank_point_at_the_blade_kink(tmp_path):
     """14/17 at 61 deg: the pinion's convex flank at (t 0.192, L 76.103 mm), where Newton from the interpolated
     start fails at the blade profile's kink, is found (from the cell's nodes) on the target axial point."""
-    from ltca.geometry.bevel.sampling import axial_target, flank_at
-
     from ltca.bevel.analysis import build_pair
     from ltca.bevel.case import load_bevel_case
     from ltca.bevel.loaded_model import member_flanks
+    from ltca.geometry.bevel.sampling import axial_target, flank_at
     pair = build_pair(load_bevel_case(_case(tmp_path, 4)))
     fl = member_flanks(pair, "pinion")[0]["convex"]
     t, L = np.array([0.192]), np.array([76.103])

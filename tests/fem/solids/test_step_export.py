@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[3]
 pytest.importorskip("gmsh")
 
 
@@ -27,9 +27,8 @@ def _outline_area(spec) -> float:
 
 
 def _check(name: str, tmp_path: Path) -> list[tuple[str, float, float]]:
-    from ltca.fem.solids.step import step_volume
-
     from ltca.export import export_step, fe_body_volume, member_solids
+    from ltca.fem.solids.step import step_volume
     res = export_step(name, tmp_path)
     out = []
     for ms, em in zip(member_solids(name), res.members):
