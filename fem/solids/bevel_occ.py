@@ -191,7 +191,7 @@ def member_solid(spec: BevelSolidSpec, progress=None) -> list:
 
     The teeth of :func:`build_bevel_solid`'s solid, fused with the blank one at a time: one fuse of all the teeth
     at once (the meshed solid, whose far teeth carry no load) can lose a whole tooth; one at a time keeps every
-    tooth (tests/test_step_export.py compares the volume with the FE body's), at about the same cost."""
+    tooth (tests/fem/solids/test_step_export.py compares the volume with the FE body's), at about the same cost."""
     import gmsh
     occ = gmsh.model.occ
     say = progress or (lambda m: None)
