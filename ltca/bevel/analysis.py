@@ -16,6 +16,7 @@ from ltca.geometry.bevel.tca import RAD_PER_ARCSEC as ARCSEC
 from ltca.geometry.bevel.tca import Assembly, BevelPair, ContactError
 
 from ..errors import CaseError
+from ..outputs import take_or_solve
 from ..validation import DesignError
 from .case import BevelCase, check_bevel_torques
 from .loaded import BevelPosition, solve_position
@@ -65,20 +66,11 @@ def analyse_torque(lm, phi: np.ndarray, torque_nm: float, progress=None, store=N
     out = []
     t0 = time.perf_counter()
     for k, p in enumerate(phi):
-        old = store.load(it, k) if store is not None else None
-        if old is not None:
-            out.append(old)
-            store.taken_over += 1
-        else:
-            out.append(solve_position(lm, float(p), abs(torque_nm) * 1e3))
-        r = out[-1]
-        line = {"torque_nm": torque_nm, "phi1_deg": float(np.degrees(r.phi1)), "te_loaded_arcsec": -r.te / ARCSEC,
-                "max_pressure_mpa": float(r.max_pressure), "torque_residual": float(r.torque_residual)}
-        if lines is not None:
-            lines.append(line)
-        if store is not None and old is None:
-            store.save(it, k, r, line)
-            store.computed += 1
+        r = take_or_solve(store, it, k, lambda: solve_position(lm, float(p), abs(torque_nm) * 1e3),
+                          lambda res: {"torque_nm": torque_nm, "phi1_deg": float(np.degrees(res.phi1)),
+                                       "te_loaded_arcsec": -res.te / ARCSEC, "max_pressure_mpa": float(res.max_pressure),
+                                       "torque_residual": float(res.torque_residual)}, lines if lines is not None else [])
+        out.append(r)
         if progress:
             progress(f"{FLANK[lm.side]} {torque_nm:g} N m: position {k + 1}/{len(phi)}  TE {-r.te / ARCSEC:8.2f} "
                      f"arcsec  p_max {r.max_pressure:7.0f} MPa  ({time.perf_counter() - t0:.1f} s)")

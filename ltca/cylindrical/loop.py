@@ -41,6 +41,7 @@ def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = 
     also kept whole, and positions already in the store (``--resume``) are taken over instead of computed."""
     from threadpoolctl import threadpool_limits
 
+    from ..outputs import take_or_solve
     from .tca import split_roll
     out: list[PositionResult] = []
     steps = list(zip(*split_roll(lm.model, np.asarray(rolls))))
@@ -52,24 +53,14 @@ def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = 
     # for the loop: setting it inspects the loaded libraries, ~3 ms a position)
     with threadpool_limits(limits=1, user_api="blas"):
         for k, (r, n) in enumerate(steps):
-            old = store.load(it, k) if store is not None else None
-            if old is not None:
-                warm = old
-                store.taken_over += 1
-                store.dirty = True
-                lines.append(log_line(lm, torque, warm))
-                out.append(warm)
-                continue
-            warm = solve_position(lm, float(r), torque, warm=warm, cycle=int(n))
-            out.append(warm)
             if store is not None:
-                if store.dirty:       # the log of the positions taken over, rewritten once before the first new one
-                    store.rewrite_log(lines)
-                    store.dirty = False
-                lines.append(log_line(lm, torque, warm))
-                store.save(it, k, warm, lines[-1])
-                store.computed += 1
-            elif log is not None:
-                with open(log, "a") as fh:
-                    fh.write(json.dumps(log_line(lm, torque, warm)) + "\n")
+                warm = take_or_solve(store, it, k, lambda: solve_position(lm, float(r), torque, warm=warm,
+                                                                          cycle=int(n)),
+                                     lambda res: log_line(lm, torque, res), lines)
+            else:
+                warm = solve_position(lm, float(r), torque, warm=warm, cycle=int(n))
+                if log is not None:
+                    with open(log, "a") as fh:
+                        fh.write(json.dumps(log_line(lm, torque, warm)) + "\n")
+            out.append(warm)
     return out

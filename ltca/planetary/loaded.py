@@ -35,6 +35,7 @@ from ltca.geometry.cylindrical import arc_length
 from ..cylindrical.loaded import solve_position
 from ..cylindrical.loaded_model import Fidelity, LoadedModel, hertz_line
 from ..cylindrical.tca import flank_gaps
+from ..outputs import take_or_solve
 from .model import SatelliteModel
 
 __all__ = ["C_PRIME", "positions", "teeth_in_mesh", "prepare_satellite", "solve_cycle"]
@@ -126,21 +127,13 @@ def solve_cycle(lm: LoadedModel, sm: SatelliteModel, phis: np.ndarray, torque: f
     warm = _Start(-sm.mesh.window(float(phis[0])).drive + torque / (rb1 ** 2 * C_PRIME * b))
     out = []
     for k, p in enumerate(phis):
-        old = store.load(it, k) if store is not None else None
-        if old is not None:
-            warm = old
-            store.taken_over += 1
-        else:
-            warm = solve_position(lm, float(p), float(torque), warm=warm)
+        warm = take_or_solve(store, it, k, lambda: solve_position(lm, float(p), float(torque), warm=warm),
+                             lambda res: {"torque_nm": torque * 1e-3, "phi_deg": float(np.degrees(p)),
+                                          "te_loaded_arcsec": float((res.theta - res.theta0) * 180 / np.pi * 3600),
+                                          "max_pressure_mpa": float(res.max_pressure),
+                                          "torque_residual": float(res.torque_residual)},
+                             lines if lines is not None else [])
         out.append(warm)
-        line = {"torque_nm": torque * 1e-3, "phi_deg": float(np.degrees(p)),
-                "te_loaded_arcsec": float((warm.theta - warm.theta0) * 180 / np.pi * 3600),
-                "max_pressure_mpa": float(warm.max_pressure), "torque_residual": float(warm.torque_residual)}
-        if lines is not None:
-            lines.append(line)
-        if store is not None and old is None:
-            store.save(it, k, warm, line)
-            store.computed += 1
         if progress:
             progress(f"{torque * 1e-3:g} N m: position {k + 1}/{len(phis)}  p_max {warm.max_pressure:7.0f} MPa")
     return out
