@@ -7,6 +7,7 @@ outline (every tooth, a dense polygon) less the bore, times the face width.
 """
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -77,7 +78,7 @@ def test_every_shipped_pair_step_volume(name, tmp_path):
 
 def test_export_command_bad_input(tmp_path):
     """A case of another kind and a missing --step: exit 2 with one line, no traceback."""
-    env = {"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"}
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
     for args in (["budget_wang", "--step", str(tmp_path)], ["fzg_c14"]):
         p = subprocess.run([sys.executable, "-m", "ltca.cli", "export", *args], capture_output=True, text=True,
                            env=env, cwd=str(ROOT), timeout=120, check=False)

@@ -3,6 +3,7 @@ both ``ltca tca`` and ``ltca run`` exit 2 with the same message naming the limit
 from __future__ import annotations
 
 import math
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -80,7 +81,7 @@ def test_tca_and_run_same_exit_2(tmp_path):
     out = []
     for cmd in (["tca", str(case)], ["run", str(case), "--out", str(tmp_path / "run"), "--quiet"]):
         p = subprocess.run([sys.executable, "-m", "ltca.cli", *cmd], capture_output=True, text=True, check=False,
-                           env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"},
+                           env={**os.environ, "PYTHONPATH": str(ROOT), "MPLBACKEND": "Agg"},
                            cwd=str(ROOT), timeout=600)
         assert p.returncode == 2 and "Traceback" not in p.stderr and "Warning" not in p.stderr, p.stderr
         out.append(p.stderr.split("error: ", 1)[1].split("synthesis/TCA failed", 1)[1])
