@@ -300,3 +300,24 @@ def test_the_tooling_is_not_installed():
     include = re.search(r"find_packages\(include=\[(.*?)\]\)", text).group(1)
     patterns = [x.strip().strip('"') for x in include.split(",")]
     assert patterns and not any(pattern.split("*")[0].split(".")[0] == TOOLS for pattern in patterns)
+
+
+def test_only_the_command_line_and_the_case_layer_import_the_study_package():
+    """The study runs analyses, never the other way: only the command line, the case layer (a study is a case
+    kind) and the key reference know it."""
+    graph = import_graph()
+    users = {m for m, edges in graph.items() for t in edges if t.startswith("ltca.study") and
+             not m.startswith("ltca.study")}
+    assert users == {"ltca.cli", "ltca.cases", "ltca.keys"}
+
+
+def test_tests_share_code_through_fixtures_only():
+    """No test module imports another test module or ``conftest``: shared code lives in ``tests/fixtures``."""
+    bad = []
+    for path in sorted((ROOT / "tests").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            names = [a.name for a in node.names] if isinstance(node, ast.Import) else \
+                [node.module or ""] if isinstance(node, ast.ImportFrom) else []
+            bad += [f"{path.relative_to(ROOT)}:{node.lineno} imports {n}" for n in names
+                    if n.split(".")[-1].startswith("test_") or n.split(".")[0] in ("conftest", "tests")]
+    assert not bad, "\n".join(bad)

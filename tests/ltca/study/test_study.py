@@ -216,13 +216,3 @@ def test_readme_example_runs(tmp_path, monkeypatch):
     code = code.replace('"out/study_example"', repr(str(tmp_path / "example")))
     exec(compile(code, "studies.md", "exec"), {})
     assert (tmp_path / "example" / "study.nc").is_file()
-
-
-def test_only_the_command_line_and_the_case_layer_import_the_study_package():
-    """The study runs analyses, never the other way: only the command line, the case layer (a study is a case
-    kind) and the key reference know it."""
-    from test_layout import import_graph
-    graph = import_graph()
-    users = {m for m, edges in graph.items() for t in edges if t.startswith("ltca.study") and
-             not m.startswith("ltca.study")}
-    assert users == {"ltca.cli", "ltca.cases", "ltca.keys"}
