@@ -51,6 +51,7 @@ def _plain_pardiso(K, fixed):
     return solve, solver
 
 
+@pytest.mark.heavy
 def test_observe_fast_path_equals_plain_full_solve_and_full_solve_still_works(beam):
     pytest.importorskip("pypardiso")
     K, fixed, F, O = beam

@@ -20,6 +20,7 @@ def _rel(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.abs(a - b).max() / np.abs(b).max())
 
 
+@pytest.mark.heavy
 def test_cvxopt_matches_superlu_on_loads_rows_and_vectors(beam):
     K, fixed, F, O = beam
     ref = factorize(K, fixed, "splu")

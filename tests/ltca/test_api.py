@@ -54,6 +54,7 @@ def test_five_lines_cylindrical(svg_backend, capfd):
     assert f.mesh_stiffness_mean_n_per_um == pytest.approx(f.mesh_stiffness_mean_n_per_mm_um * 14.0, rel=1e-5)
 
 
+@pytest.mark.heavy
 def test_five_lines_bevel(svg_backend, capfd, tmp_path):
     ax = Figure().add_subplot()
     case = ltca.load_case("spiral_bevel_cao2008").with_values({"assembly.E_mm": 0.05})
@@ -113,6 +114,7 @@ def test_bad_run_settings_are_refused_before_work():
         ltca.run(ltca.load_case("spiral_bevel_cao2008"), torques_nm=[0.0])
 
 
+@pytest.mark.heavy
 def test_readme_python_example_runs_as_written(svg_backend, capfd):
     """The README's five lines, executed as they stand (the plot goes to a new Figure, not a window)."""
     import re

@@ -13,6 +13,7 @@ CYLINDRICAL = ["fzg_c14.toml", "helical_c14.toml", "internal_spur.toml", "fzg_c1
 
 
 #: the default tier runs the flagship case end to end; the heavy tier every cylindrical case
+@pytest.mark.heavy
 @pytest.mark.parametrize("name", [n if n == "fzg_c14.toml" else pytest.param(n, marks=pytest.mark.heavy)
                                   for n in CYLINDRICAL])
 def test_cylindrical_case_runs_and_writes_results(name, tmp_path):

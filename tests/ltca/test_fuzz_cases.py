@@ -18,6 +18,7 @@ import signal
 from collections import Counter
 from pathlib import Path
 
+import pytest
 import tomllib
 
 from fixtures.paths import CASES
@@ -171,6 +172,7 @@ def _bases() -> list[tuple[str, str, str]]:
     return out
 
 
+@pytest.mark.heavy
 def test_fuzz_shipped_cases(tmp_path, capsys):
     rng = random.Random(SEED)
     bases = _bases()

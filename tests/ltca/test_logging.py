@@ -61,6 +61,7 @@ def test_mesh_cache_miss_store_and_hit_are_logged(caplog, tmp_path):
     assert "4 nodes, 1 tets" in msgs[-1]
 
 
+@pytest.mark.heavy
 def test_cli_verbose_routes_the_run_log_to_stderr(tmp_path, capsys):
     from ltca.cli import main
     out = tmp_path / "o"

@@ -51,6 +51,7 @@ def bevel_saved(tmp_path_factory):
     return res, out
 
 
+@pytest.mark.heavy
 def test_bevel_series(bevel_saved):
     res, out = bevel_saved
     sets = ET.parse(out / "paraview.pvd").getroot().findall("./Collection/DataSet")

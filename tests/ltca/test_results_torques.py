@@ -39,6 +39,7 @@ def _open(run):
         return ds.load()
 
 
+@pytest.mark.heavy
 def test_no_warnings_printed(three):
     _, _, err, caught = three
     assert caught == [], caught

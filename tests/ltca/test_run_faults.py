@@ -39,6 +39,7 @@ def _lines(p: Path) -> int:
         return 0
 
 
+@pytest.mark.heavy
 def test_sigkill_then_resume_is_identical(tmp_path, cache):
     import xarray as xr
     ref, cut = tmp_path / "ref", tmp_path / "cut"
@@ -134,7 +135,7 @@ def test_read_only_out_before_any_fe_work(tmp_path, capsys):
 
 
 # the disk fills: writing the positions, writing results.nc, writing the VTU files and the report
-@pytest.mark.parametrize("size", ["100k", "120k", "600k", "2600k"])
+@pytest.mark.parametrize("size", ["100k", *(pytest.param(s, marks=pytest.mark.heavy) for s in ("120k", "600k", "2600k"))])
 def test_full_disk_leaves_no_truncated_file(tmp_path, cache, size):
     if os.geteuid() != 0:
         pytest.skip("mounting a tmpfs needs root")

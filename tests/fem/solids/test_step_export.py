@@ -42,6 +42,7 @@ def _check(name: str, tmp_path: Path) -> list[tuple[str, float, float]]:
     return out
 
 
+@pytest.mark.heavy
 def test_spur_pair_step_volume(tmp_path):
     """FZG C14 (spur): each member's STEP volume is the outline area less the bore times the face width (to the
     spline fit, 1e-4) and the FE body's within 0.5 %."""

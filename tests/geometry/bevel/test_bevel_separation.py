@@ -65,7 +65,8 @@ def _separation_path_and_te(pair: BevelPair, side: str) -> tuple[float, float, s
     return angle, float(np.ptp(s.te[closed]) / RAD_PER_ARCSEC), set(s.where)
 
 
-@pytest.mark.parametrize("d_eta_deg, te_factor", [(0.0, 1.0), (4.0, 1.4), (-4.0, 0.7)],
+@pytest.mark.parametrize("d_eta_deg, te_factor", [(0.0, 1.0), pytest.param(4.0, 1.4, marks=pytest.mark.heavy),
+                                                  pytest.param(-4.0, 0.7, marks=pytest.mark.heavy)],
                          ids=["case", "perturbed-up", "perturbed-down"])
 def test_synthesis_meets_its_targets_measured_by_the_separation_field(d_eta_deg, te_factor):
     """The synthesis's path angle eta2 and TE magnitude, measured apart from the continuous TCA the

@@ -53,6 +53,7 @@ def test_table_shape_is_checked(pair):
         SurfaceTable(mg.P.exact_surface, mg.P.axial, (0, 1), (mg.P.Ai, mg.P.A0), shape=(5, 40))
 
 
+@pytest.mark.heavy
 def test_loaded_cycle_with_and_without_the_table(pair, bevel_bodies_coarse):
     """The loaded TE and the peak pressure of a cycle (175 N m, coarse bodies) with the tabulated flanks equal the
     exact ones within 1e-3 arcsec and 0.01 %: the table is not a model change."""

@@ -26,6 +26,7 @@ def _te_ptp(case, tmp_path, n=12, fidelity="default"):
     return np.ptp(te) / model.pair.ratio * 206264.8, res
 
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("fidelity", ["coarse", pytest.param("default", marks=pytest.mark.heavy)])
 def test_helical_te_smaller_than_spur_of_same_transverse_geometry(tmp_path, fidelity):
     """The helical pair's loaded TE peak-to-peak is under 0.8 of the spur pair's of the same transverse geometry, at

@@ -31,6 +31,7 @@ def flagship(tmp_path_factory):
     return out, head
 
 
+@pytest.mark.heavy
 def test_report_is_self_contained_and_complete(flagship):
     out, head = flagship
     html = (out / "report.html").read_text(encoding="utf-8")
@@ -49,6 +50,7 @@ def test_report_is_self_contained_and_complete(flagship):
     assert "Every position converged" in html
 
 
+@pytest.mark.heavy
 def test_report_numbers(flagship):
     """The figures on the page (guarded): derived geometry, ISO 6336 and Hertz beside ours."""
     _, head = flagship
@@ -66,6 +68,7 @@ def test_report_numbers(flagship):
     assert sp["ours"] == pytest.approx(255.2, rel=0.03) and sg["ours"] == pytest.approx(242.3, rel=0.03)
 
 
+@pytest.mark.heavy
 def test_derived_geometry(fzg_model):
     from ltca.cylindrical.derived import active_profile, derived_geometry
     g = derived_geometry(fzg_model)
@@ -80,6 +83,7 @@ def test_derived_geometry(fzg_model):
     assert a["pinion"]["form"] < a["pinion"]["sap"] < a["pinion"]["eap"] <= a["pinion"]["tip"]
 
 
+@pytest.mark.heavy
 @pytest.mark.skipif(CHROMIUM is None, reason="headless Chromium missing: apt-get install -y chromium")
 def test_report_in_headless_chromium(flagship, tmp_path):
     """The page loads in a real browser with no console message; every plot decodes (naturalWidth > 0: read by a
@@ -102,6 +106,7 @@ document.body.setAttribute("data-widths", w.join(",")); });</script></body>"""),
     assert len(widths) == len(PLOT_IDS) and min(widths) > 300
 
 
+@pytest.mark.heavy
 def test_paraview_series(flagship):
     """paraview.pvd: a step per written position, three parts each, read back by meshio with displacement, von
     Mises, principal stress and the flank pressure; at the pitch position the flank surface's peak pressure is
@@ -153,6 +158,7 @@ def test_pattern_not_striped_at_defaults_but_striped_undersampled(flagship, fzg_
     assert (out / "bearing_pattern_diameter.png").stat().st_size > 10_000
 
 
+@pytest.mark.heavy
 def test_unconverged_positions_warn():
     from types import SimpleNamespace
 

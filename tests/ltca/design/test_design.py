@@ -74,6 +74,7 @@ def test_pressure_floor_is_below_the_computed_flank_pressure():
     # FZG C14 at 200 N m (tests/ltca/cylindrical/test_fzg_validation.py): peak flank pressure about 1400 MPa
 
 
+@pytest.mark.heavy
 def test_edge_constraint_no_lead_variable_can_meet_exits_2(tmp_path, capsys):
     """Face-end contact under misalignment with only tip-relief variables: impossible at the start."""
     from ltca.cli import main

@@ -25,6 +25,7 @@ def run(tmp_path_factory):
     return out, json.loads((out / "summary.json").read_text())
 
 
+@pytest.mark.heavy
 def test_run_writes_results(run):
     out, s = run
     for f in ("summary.json", "load_sharing.png", "load_sharing.csv", "torques.csv"):
@@ -33,6 +34,7 @@ def test_run_writes_results(run):
     assert len(s["results"]) == 8          # 4 torques x 2 directions
 
 
+@pytest.mark.heavy
 def test_shares_sum_and_torque_balance(run):
     _, s = run
     for r in s["results"]:
@@ -45,6 +47,7 @@ def test_shares_sum_and_torque_balance(run):
             assert abs(f.sum() * 70.47694655894313 / 1e3 - r["torque_nm"]) < 0.02 * r["torque_nm"]
 
 
+@pytest.mark.heavy
 def test_pairs_grow_with_torque_and_stay_fewer_than_the_seed_claims(run):
     _, s = run
     drive = sorted((r for r in s["results"] if r["direction"] == 1), key=lambda r: r["torque_nm"])
@@ -58,6 +61,7 @@ def test_pairs_grow_with_torque_and_stay_fewer_than_the_seed_claims(run):
     assert all(b["peak_pressure_mpa"] > a["peak_pressure_mpa"] for a, b in zip(drive, drive[1:]))
 
 
+@pytest.mark.heavy
 def test_both_directions_symmetric(run):
     _, s = run
     by = {(r["direction"], round(r["torque_nm"], 6)): r for r in s["results"]}
@@ -70,6 +74,7 @@ def test_both_directions_symmetric(run):
             {-int(k): v for k, v in r["mean_share"].items()})
 
 
+@pytest.mark.heavy
 def test_paraview_series(run):
     """paraview.pvd of the first torque, drive direction: a step per position (3 asked, fewer than the default
     10), the satellite, the wheel and the satellite flank's pressure, read back by meshio; the flank's peak at each
@@ -154,6 +159,7 @@ def test_bad_input_exits_2_naming_the_field(name, command, tmp_path, capsys):
     assert f"'{field}'" in err and "Traceback" not in err, err
 
 
+@pytest.mark.heavy
 def test_an_interrupted_run_resumes_to_the_same_results(run, tmp_path):
     """A run stopped after its first positions (its folder as an interrupted run leaves it: the stored positions of
     the first torque's first two, no summary) and resumed with --resume computes only the rest and gives the

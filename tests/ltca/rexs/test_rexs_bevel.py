@@ -97,6 +97,7 @@ def test_a_missing_blank_value_is_named(tmp_path):
         rx.stage_dict(2, 350.0)
 
 
+@pytest.mark.heavy
 def test_the_imported_stage_gives_the_shipped_pairs_tca(tmp_path):
     """Same blank, same targets (the assumed ones are the shipped pair's): the synthesis and the unloaded TE agree."""
     rx = rexs.read(_write(tmp_path / "bevel.rexs"))

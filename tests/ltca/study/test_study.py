@@ -108,6 +108,7 @@ def sweep(tmp_path_factory):
     return study, out, run_study(study, out, workers=2, progress=False, plots=True)
 
 
+@pytest.mark.heavy
 def test_one_compliance_per_geometry(sweep):
     import json
     study, out, ds = sweep
@@ -144,6 +145,7 @@ def _points(out: Path) -> list[Path]:
     return sorted((out / "points").glob("*.nc")) if (out / "points").is_dir() else []
 
 
+@pytest.mark.heavy
 def test_a_killed_worker_loses_nothing(tmp_path):
     """Kill a worker process while it solves a point: the study completes, every point once."""
     import json
@@ -178,6 +180,7 @@ def test_a_killed_worker_loses_nothing(tmp_path):
     assert np.isfinite(ds.te_loaded_ptp.values).all()
 
 
+@pytest.mark.heavy
 def test_a_killed_client_reruns_only_what_is_missing(tmp_path):
     """``ltca study`` killed (with its LocalCluster) after some points; the rerun computes only the rest."""
     import json
@@ -207,6 +210,7 @@ def test_a_killed_client_reruns_only_what_is_missing(tmp_path):
     assert len(_points(out)) == 8 and np.isfinite(ds.te_loaded_ptp.values).all()
 
 
+@pytest.mark.heavy
 def test_readme_example_runs(tmp_path, monkeypatch):
     """The example of docs/guide/studies.md, run as it stands (its output directory moved to tmp_path)."""
     text = (ROOT / "docs" / "guide" / "studies.md").read_text()

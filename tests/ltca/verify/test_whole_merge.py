@@ -43,6 +43,7 @@ def test_rung_settings_and_ladder_change():
     assert ladder_key(-9.0) == "-9" and ladder_key(-4.5) == "-4.5"
 
 
+@pytest.mark.heavy
 def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch):
     """Merging -4.5 deg replaces that position by its run one rung finer than its frozen one, with our figures, and
     extends its ladder (the frozen run before it); the first position's ladder, the other positions and the original
@@ -85,6 +86,7 @@ def test_merge_keeps_the_frozen_ladder_and_other_positions(tmp_path, monkeypatch
     assert after["merged"][-1]["positions"] == ["-4.5"] and after["merged"][-1]["refine"] == 1
 
 
+@pytest.mark.heavy
 def test_the_check_runs_once_per_position_and_the_freeze_adds_its_ladder(tmp_path, monkeypatch, capsys):
     """``ltca validate --reference calculix-whole`` runs CalculiX once per position at the base band; the freeze
     script adds the ladder at the first position (``--refine 1 --ladder both``: 1.5, 1, 1/1.5 of the band) and
