@@ -1,0 +1,115 @@
+"""A bevel case from a HypoidFaceMilled / Transmission3D script read by :func:`ltca.bevel.hfm_script.parse_hfm`.
+
+The case takes the settings sheets as they stand and the basic data of its blank from the ``COMMON`` blocks: teeth,
+spiral angle, face width, shaft angle = sum of the pitch angles, module = 2 A_0 sin(delta_2) / z_2, taper uniform
+when the face angles equal the pitch angles; the pressure angle and the cutter radius from the gear's blades (their
+mean blade angle and mean point radius: the gear's standard cut centres its blades on the cutter radius). The blank
+is then designed by the case's Gleason formulas (:mod:`ltca.geometry.bevel.blank`): where the script's face, back
+and front angles, face and root apexes differ from it the differences are logged and listed (``notes``), since a
+case does not carry the script's own cones.
+"""
+from __future__ import annotations
+
+import logging
+import math
+from pathlib import Path
+
+from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+
+from ..errors import CaseError
+from .hfm_script import HfmScript
+
+__all__ = ["case_data", "case_toml", "blank_apexes"]
+
+log = logging.getLogger(__name__)
+
+
+def blank_apexes(blank, member: str) -> tuple[float, float]:
+    """Face and root apex of a member's blank (:class:`ltca.geometry.bevel.blank.BevelBlank`) beyond the crossing
+    point along its axis, mm, the script's FACEAPEX and ROOTAPEX: the cones through the heel's face and root
+    points (``-Z`` of the apex in the member frame, whose origin is the pitch apex at the crossing point)."""
+    mb, A0 = blank.member(member), blank.outer_cone_distance
+    g = mb.pitch_angle
+    out = []
+    for off, ang in ((mb.addendum, mb.face_angle), (-mb.dedendum, mb.root_angle)):
+        Z, rho = A0 * math.cos(g) - off * math.sin(g), A0 * math.sin(g) + off * math.cos(g)
+        out.append(-(Z - rho * math.cos(ang) / math.sin(ang)))
+    return out[0], out[1]
+
+
+def case_data(script: HfmScript, name: str | None = None, torques: list[float] | None = None
+              ) -> tuple[dict, list[str]]:
+    """The bevel case dict of a script (module docstring) and the notes on what the case does not carry.
+
+    Returns ``(data, notes)``: ``data`` as read from a case file (``[case]``, ``[bevel]`` with
+    ``[bevel.settings.*]``, ``[load]`` when ``torques`` (N m on the pinion) are given), ``notes`` one line per blank
+    value of the script that the case's designed blank does not reproduce within 1e-6 (mm, deg)."""
+    f = script.file
+    p, g = script.common["pinion"], script.common["gear"]
+    for k, tol in (("SPIRALANGLE", 1e-6), ("OUTERCONEDIST", 1e-6), ("FACEWIDTH", 1e-6)):
+        if abs(p[k] - g[k]) > tol:
+            raise CaseError(f"pinion.COMMON.{k}", p[k], f"the gear's {g[k]!r}: a spiral bevel pair without offset "
+                            "(a hypoid pair is not modelled)", f)
+    for m in ("pinion", "gear"):
+        if abs(script.common[m]["PITCHAPEX"]) > 1e-6:
+            raise CaseError(f"{m}.COMMON.PITCHAPEX", script.common[m]["PITCHAPEX"], "0: the pitch apex at the "
+                            "crossing point (a hypoid pair is not modelled)", f)
+    z1, z2 = int(p["NTEETH"]), int(g["NTEETH"])
+    g1, g2 = math.radians(p["PITCHANGLE"]), math.radians(g["PITCHANGLE"])
+    if abs(math.atan2(math.sin(g1 + g2), z2 / z1 + math.cos(g1 + g2)) - g1) > math.radians(1e-6):
+        raise CaseError("pinion.COMMON.PITCHANGLE", p["PITCHANGLE"], f"the pitch angle of {z1}/{z2} teeth at the "
+                        f"shaft angle {p['PITCHANGLE'] + g['PITCHANGLE']!r} deg (rolling pitch cones)", f)
+    gs = script.sheets["gear"]
+    uniform = all(abs(c["FACEANGLE"] - c["PITCHANGLE"]) < 1e-9 for c in (p, g))
+    bevel = {"pinion_teeth": z1, "gear_teeth": z2, "module_mm": 2 * g["OUTERCONEDIST"] * math.sin(g2) / z2,
+             "face_width_mm": g["FACEWIDTH"], "spiral_angle_deg": g["SPIRALANGLE"],
+             "pressure_angle_deg": 0.5 * (gs["concave"]["blade_angle_deg"] + gs["convex"]["blade_angle_deg"]),
+             "shaft_angle_deg": p["PITCHANGLE"] + g["PITCHANGLE"], "gear_hand": g["HAND"],
+             "cutter_radius_mm": 0.5 * (gs["concave"]["point_radius_mm"] + gs["convex"]["point_radius_mm"]),
+             "taper": "uniform" if uniform else "standard", "settings": script.sheets}
+    stem = Path(f).stem if f else "hfm"
+    data = {"case": {"name": name or stem, "description": f"{z1}/{z2} spiral bevel pair of a HypoidFaceMilled "
+                     "script, cut as its settings give it",
+                     "source": f"HypoidFaceMilled / Transmission3D script {Path(f).name if f else ''}".strip()},
+            "bevel": bevel}
+    if torques:
+        data["load"] = {"torque_nm": [float(t) for t in torques]}
+    return data, _blank_notes(script, bevel)
+
+
+def _blank_notes(script: HfmScript, bevel: dict) -> list[str]:
+    """The script's cones against the blank the case designs from ``bevel`` (logged, one line each)."""
+    try:
+        bl = design_blank(BevelBasicData(
+            z1=bevel["pinion_teeth"], z2=bevel["gear_teeth"], module=bevel["module_mm"],
+            face_width=bevel["face_width_mm"], spiral_angle=math.radians(bevel["spiral_angle_deg"]),
+            pressure_angle=math.radians(bevel["pressure_angle_deg"]),
+            shaft_angle=math.radians(bevel["shaft_angle_deg"]), hand=bevel["gear_hand"],
+            cutter_radius=bevel["cutter_radius_mm"], taper=bevel["taper"]))
+    except ValueError:
+        return []                           # the case's own check names the field
+    notes = []
+    for m in ("pinion", "gear"):
+        c, mb = script.common[m], bl.member(m)
+        face_apex, root_apex = blank_apexes(bl, m)
+        ours = {"FACEANGLE": math.degrees(mb.face_angle), "FACEAPEX": face_apex, "ROOTAPEX": root_apex,
+                "BACKANGLE": math.degrees(mb.pitch_angle), "FRONTANGLE": math.degrees(mb.pitch_angle)}
+        for k, v in ours.items():
+            if abs(c[k] - v) > 1e-6:
+                notes.append(f"{m} {k} {c[k]:.6g} in the script, {v:.6g} in the blank designed here "
+                             f"({'deg' if k.endswith('ANGLE') else 'mm'}; Gleason's formulas, "
+                             "the heel and toe normal to the pitch cone)")
+    for line in notes:
+        log.warning("%s: %s", script.file or "script", line)
+    return notes
+
+
+def case_toml(data: dict, notes: list[str], source: str = "") -> str:
+    """The TOML text of :func:`case_data`'s result: a header naming ``source`` and the notes as comments, then the
+    case (floats written exactly)."""
+    from ..case import to_toml
+    head = [f"# converted by `ltca convert` from {source}" if source else "# converted by `ltca convert`"]
+    head += [f"# not carried: {n}" for n in notes]
+    if "load" not in data:
+        head.append("# no torque: add [load] torque_nm = [..] (N m on the pinion) before `ltca run`")
+    return "\n".join(head) + "\n" + to_toml(data) + "\n"
