@@ -1,4 +1,5 @@
-"""The ``ltca`` command: run, tca, export, import, convert, forming, study, optimise, convergence, validate, bench, budget, chain.
+"""The ``ltca`` command: run, tca, export, import, convert, forming, study, optimise, convergence, validate, bench,
+budget, chain.
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
@@ -194,7 +195,7 @@ def _cmd_convert(a: argparse.Namespace) -> int:
         print(text, end="")
     else:
         Path(a.out).write_text(text, encoding="utf-8")
-        print(f"wrote {a.out} ({len(notes)} blank value(s) of the script not carried, listed in the file)")
+        print(f"wrote {a.out} ({len(notes)} value(s) of the script not carried as written, listed in the file)")
     return 0
 
 

@@ -42,22 +42,28 @@ def case_data(script: HfmScript, name: str | None = None, torques: list[float] |
     """The bevel case dict of a script (module docstring) and the notes on what the case does not carry.
 
     Returns ``(data, notes)``: ``data`` as read from a case file (``[case]``, ``[bevel]`` with
-    ``[bevel.settings.*]``, ``[load]`` when ``torques`` (N m on the pinion) are given), ``notes`` one line per blank
-    value of the script that the case's designed blank does not reproduce within 1e-6 (mm, deg)."""
+    ``[bevel.settings.*]``, ``[load]`` when ``torques`` (N m on the pinion) are given), ``notes`` the script's
+    remarks (:class:`ltca.bevel.hfm_script.HfmScript`) and one line per blank value of the script that the case's
+    designed blank does not reproduce within 1e-6 (mm, deg)."""
     f = script.file
     p, g = script.common["pinion"], script.common["gear"]
+
+    def at(m: str, k: str) -> str:
+        n = (script.lines or {}).get(m, {}).get(k)
+        return f"line {n}: {m}.COMMON.{k}" if n else f"{m}.COMMON.{k}"
+
     for k, tol in (("SPIRALANGLE", 1e-6), ("OUTERCONEDIST", 1e-6), ("FACEWIDTH", 1e-6)):
         if abs(p[k] - g[k]) > tol:
-            raise CaseError(f"pinion.COMMON.{k}", p[k], f"the gear's {g[k]!r}: a spiral bevel pair without offset "
+            raise CaseError(at("pinion", k), p[k], f"the gear's {g[k]!r}: a spiral bevel pair without offset "
                             "(a hypoid pair is not modelled)", f)
     for m in ("pinion", "gear"):
         if abs(script.common[m]["PITCHAPEX"]) > 1e-6:
-            raise CaseError(f"{m}.COMMON.PITCHAPEX", script.common[m]["PITCHAPEX"], "0: the pitch apex at the "
+            raise CaseError(at(m, "PITCHAPEX"), script.common[m]["PITCHAPEX"], "0: the pitch apex at the "
                             "crossing point (a hypoid pair is not modelled)", f)
     z1, z2 = int(p["NTEETH"]), int(g["NTEETH"])
     g1, g2 = math.radians(p["PITCHANGLE"]), math.radians(g["PITCHANGLE"])
     if abs(math.atan2(math.sin(g1 + g2), z2 / z1 + math.cos(g1 + g2)) - g1) > math.radians(1e-6):
-        raise CaseError("pinion.COMMON.PITCHANGLE", p["PITCHANGLE"], f"the pitch angle of {z1}/{z2} teeth at the "
+        raise CaseError(at("pinion", "PITCHANGLE"), p["PITCHANGLE"], f"the pitch angle of {z1}/{z2} teeth at the "
                         f"shaft angle {p['PITCHANGLE'] + g['PITCHANGLE']!r} deg (rolling pitch cones)", f)
     gs = script.sheets["gear"]
     uniform = all(abs(c["FACEANGLE"] - c["PITCHANGLE"]) < 1e-9 for c in (p, g))
@@ -74,7 +80,7 @@ def case_data(script: HfmScript, name: str | None = None, torques: list[float] |
             "bevel": bevel}
     if torques:
         data["load"] = {"torque_nm": [float(t) for t in torques]}
-    return data, _blank_notes(script, bevel)
+    return data, list(script.remarks) + _blank_notes(script, bevel)
 
 
 def _blank_notes(script: HfmScript, bevel: dict) -> list[str]:
@@ -107,9 +113,13 @@ def _blank_notes(script: HfmScript, bevel: dict) -> list[str]:
 def case_toml(data: dict, notes: list[str], source: str = "") -> str:
     """The TOML text of :func:`case_data`'s result: a header naming ``source`` and the notes as comments, then the
     case (floats written exactly)."""
+    from ltca.geometry.bevel.sheet import sheet_toml
+
     from ..case import to_toml
     head = [f"# converted by `ltca convert` from {source}" if source else "# converted by `ltca convert`"]
     head += [f"# not carried: {n}" for n in notes]
     if "load" not in data:
         head.append("# no torque: add [load] torque_nm = [..] (N m on the pinion) before `ltca run`")
-    return "\n".join(head) + "\n" + to_toml(data) + "\n"
+    rest = dict(data, bevel={k: v for k, v in data["bevel"].items() if k != "settings"})
+    return ("\n".join(head) + "\n\n" + to_toml(rest).lstrip("\n") + "\n\n# each member's settings sheet per flank (mm, deg), "
+            "as the script gives it\n" + sheet_toml(data["bevel"]["settings"]))

@@ -4,9 +4,10 @@ flank, its ``MACHINE`` and ``CUTTER`` blocks (conventions: :mod:`ltca.bevel.hfm_
 The layout is the one SpyGO writes for that program (the only public example of the format): ``EDIT``, ``PAIRS``
 with ``HAND_PINION``, a ``ROTOR`` and a ``HYPOID`` section per member, the concave flank's blocks first, except that
 each flank's blocks are opened by a ``CONCAVE`` or ``CONVEX`` line (SpyGO only closes them, with ``EXIT``; the
-reader takes either form); session commands (``SESFILENAME``, ``SAVESESSION``) are left to the user. Every keyword is written, zeros included, with
-Python's shortest round-trip numbers, so :func:`ltca.bevel.hfm_script.parse_hfm` reads back the same settings
-sheets (up to the rad <-> deg and thousandths scaling of a few motion terms, 1e-16 relative).
+reader takes either form); session commands (``SESFILENAME``, ``SAVESESSION``) are left to the user. Every keyword
+is written, zeros included, with Python's shortest round-trip numbers, so :func:`ltca.bevel.hfm_script.parse_hfm`
+reads back the same settings sheets (up to the rad <-> deg and thousandths scaling of a few motion terms, 1e-16
+relative).
 
 The blank is the case's: face, back and front angles, pitch, face and root apexes of the designed cones (the heel
 and toe normal to the pitch cone: back and front angle = pitch angle). ``BASECONEANGLE`` and ``BASECONEAPEX`` give

@@ -40,12 +40,15 @@ _TOP = ("EDIT", "PAIRS", "ROTOR", "HYPOID", "NHYPOIDS", "TYPE", "EXIT", "SAVESES
 class HfmScript:
     """A script read: ``pinion_hand`` ("left" or "right"), ``common`` ({member: {KEYWORD: value}}, the script's
     units), ``sheets`` ({member: {"concave": sheet, "convex": sheet}}, :mod:`ltca.geometry.bevel.sheet`'s keys),
-    ``skipped`` (the menus and lines not read, for the log) and ``file``."""
+    ``skipped`` (the menus and lines not read, for the log), ``file``, ``lines`` ({member: {KEYWORD: line}} of
+    the COMMON blocks, for messages) and ``remarks`` (values read otherwise than written, one line each)."""
     pinion_hand: str
     common: dict
     sheets: dict
     skipped: tuple[str, ...] = ()
     file: str | None = None
+    lines: dict | None = None
+    remarks: tuple[str, ...] = ()
 
 
 def read_hfm(path: str | Path) -> HfmScript:
@@ -208,19 +211,26 @@ def _assemble(blocks: dict, hand: str | None, gear_type: tuple, skipped: tuple, 
             raise CaseError(f"line {c['USE_SPRD_BLD_THICKNESS'][1]}: {where}.USE_SPRD_BLD_THICKNESS", "FALSE",
                             "TRUE: the tooth thickness is the one the cutters' point radii cut (a prescribed "
                             "NORMAL_THICKNESS is not modelled)", file)
+        unused = sorted(k for k in ("BASECONEANGLE", "BASECONEAPEX", "TYPE_THICKNESS", "NORMAL_THICKNESS") if k in c)
+        if unused:
+            log.info("%s: %s: %s not used (the rim of that program's FE model; the thickness the cutters cut)",
+                     file or "script", where, ", ".join(unused))
     hand = hand or common["pinion"]["HAND"] or {"left": "right", "right": "left"}.get(common["gear"]["HAND"])
     if hand is None:
         raise CaseError("pairs.PAIRS.HAND_PINION", None, "the pinion's hand: HAND_PINION in PAIRS or HAND in the "
                         "pinion's COMMON block (LEFT or RIGHT)", file)
+    remarks = []
     for m, want in (("pinion", hand), ("gear", "left" if hand == "right" else "right")):
         if common[m]["HAND"] not in (None, want):
-            log.warning("%s: %s COMMON HAND %s taken as %s: the pair's hand is the pinion's (%s)", file or "script",
-                        m, common[m]["HAND"].upper(), want.upper(), hand.upper())
+            remarks.append(f"{m} HAND {common[m]['HAND'].upper()} (line {blocks[(m, 'COMMON', None)]['HAND'][1]}) "
+                           f"taken as {want.upper()}: the pair's hand is the pinion's, {hand.upper()}")
+            log.warning("%s: %s", file or "script", remarks[-1])
         common[m]["HAND"] = want
     sheets = {m: {s: _flank(blocks[(m, "MACHINE", s)], blocks[(m, "CUTTER", s)], m, s, hand,
                             gear_type[0] if m == "gear" else "generated", file) for s in ("concave", "convex")}
               for m in ("pinion", "gear")}
-    return HfmScript(hand, common, sheets, skipped, file)
+    lines = {m: {k: v[1] for k, v in blocks[(m, "COMMON", None)].items() if k} for m in ("pinion", "gear")}
+    return HfmScript(hand, common, sheets, skipped, file, lines, tuple(remarks))
 
 
 def _flank(mach: dict, cut: dict, member: str, side: str, hand: str, generation: str, file) -> dict:
@@ -228,17 +238,15 @@ def _flank(mach: dict, cut: dict, member: str, side: str, hand: str, generation:
     where = f"{member}.{side}.MACHINE"
     sheet: dict = {"generation": generation, "blade": "outside" if side == "concave" else "inside"}
     formate = generation == "formate"
-    if formate and "HORIZONTAL" in mach and ("RADIALSETTING" in mach or "CRADLEANGLE" in mach):
-        raise CaseError(f"line {mach['HORIZONTAL'][1]}: {where}.HORIZONTAL", mach["HORIZONTAL"][0], "either "
-                        "HORIZONTAL and VERTICAL or RADIALSETTING and CRADLEANGLE for the cutter centre", file)
-    if formate and "HORIZONTAL" in mach:
+    hv = [k for k in ("HORIZONTAL", "VERTICAL") if k in mach]
+    if hv and (not formate or "RADIALSETTING" in mach or "CRADLEANGLE" in mach):
+        raise CaseError(f"line {mach[hv[0]][1]}: {where}.{hv[0]}", mach[hv[0]][0], "the cutter centre of a formate "
+                        "gear (GEAR_TYPE FORMATE) as HORIZONTAL and VERTICAL instead of RADIALSETTING and CRADLEANGLE",
+                        file)
+    if hv:
         h, v = _num(mach, "HORIZONTAL", where, file), _num(mach, "VERTICAL", where, file, 0.0)
-        mach = dict(mach, RADIALSETTING=(repr(math.hypot(h, v)), mach["HORIZONTAL"][1]),
-                    CRADLEANGLE=(repr(math.degrees(math.atan2(v, h))), mach["HORIZONTAL"][1]))
-    elif "HORIZONTAL" in mach or "VERTICAL" in mach:
-        k = "HORIZONTAL" if "HORIZONTAL" in mach else "VERTICAL"
-        raise CaseError(f"line {mach[k][1]}: {where}.{k}", mach[k][0], "only for a formate gear (GEAR_TYPE FORMATE); "
-                        "a generated flank gives RADIALSETTING and CRADLEANGLE", file)
+        mach = dict(mach, RADIALSETTING=(repr(math.hypot(h, v)), mach[hv[0]][1]),
+                    CRADLEANGLE=(repr(math.degrees(math.atan2(v, h))), mach[hv[0]][1]))
     for k, (key, row) in F.MACHINE0.items():
         req = None if k in ("RADIALSETTING", "CRADLEANGLE", "ROOTANGLE") else 0.0
         sheet[key] = F.sign(member, hand, row, 0) * _num(mach, k, where, file, req)
@@ -268,14 +276,20 @@ def _flank(mach: dict, cut: dict, member: str, side: str, hand: str, generation:
         if a:
             sheet[key] = a
     where = f"{member}.{side}.CUTTER"
+    used = {"", "USENEWCUTTER", "TYPE", "TOPREM_OPTION", "FLANKREM_OPTION", *F.CUTTER}
     for k, key in F.CUTTER.items():
         sheet[key] = _num(cut, k, where, file, 0.0 if k == "EDGERADIUS" else None)
     _word(cut, "USENEWCUTTER", where, ("TRUE",), file, "TRUE")
     if _word(cut, "TYPE", where, ("STRAIGHT", "CURVED"), file, "STRAIGHT") == "CURVED":
         sheet["profile_radius_mm"] = _num(cut, "RHO", where, file)
+        used.add("RHO")
     for rem in ("TOPREM", "FLANKREM"):
         opt = _word(cut, f"{rem}_OPTION", where, ("NONE", "BLENDED"), file, "NONE")
         if opt == "BLENDED":
             sheet[f"{rem.lower()}_depth_mm"] = _num(cut, f"{rem}_DEPTH", where, file)
             sheet[f"{rem.lower()}_radius_mm"] = _num(cut, f"{rem}_BLEND_RADIUS", where, file)
+            used |= {f"{rem}_DEPTH", f"{rem}_BLEND_RADIUS"}
+    if set(cut) - used:
+        log.info("%s: %s: %s not used (the blade's TYPE and options leave them out)", file or "script", where,
+                 ", ".join(f"{k} (line {cut[k][1]})" for k in sorted(set(cut) - used)))
     return sheet

@@ -7,9 +7,11 @@ import dataclasses
 import json
 import logging
 import math
+import re
 
 import numpy as np
 import pytest
+import tomllib
 
 from fixtures.paths import REFERENCE
 from ltca.bevel.analysis import build_pair
@@ -22,7 +24,7 @@ from ltca.errors import CaseError
 from ltca.geometry.bevel.blank import BevelBasicData, design_blank
 from ltca.geometry.bevel.cutter import HeadCutter
 from ltca.geometry.bevel.generation import generate_member, solve_axial_points, surface_state
-from ltca.geometry.bevel.machine import FlankCut, MachineSettings, MemberCut, gear_settings, pinion_settings
+from ltca.geometry.bevel.machine import MOTIONS, FlankCut, MachineSettings, MemberCut, gear_settings, pinion_settings
 from ltca.geometry.bevel.sheet import flank_sheet, member_sheet
 from ltca.geometry.bevel.tca import BevelPair, tca
 from ltca.geometry.bevel.universal import blade_coordinates
@@ -125,23 +127,48 @@ def test_sheet_written_and_read_back_is_unchanged(pinion_hand, formate_gear):
     assert b["gear_hand"] == d.hand
 
 
-def test_script_signs_of_a_left_hand_pinion():
-    """The written numbers themselves (the convention of ltca.bevel.hfm_format): the pinion's cradle angle and
-    tilt change sign, the gear's cradle angle does not, the vertical motion changes sign on both members."""
+def _value(text: str, key: str) -> float:
+    return float(re.search(rf"^\s*{key} (\S+)$", text, re.M).group(1))
+
+
+def test_script_numbers_of_a_left_hand_pinion():
+    """The written numbers themselves, SpyGO's scaling and signs (DesignData.manage_machine_settings) with the frame
+    identity of tools/compare_spygo.py: the pinion's cradle angle, tilt, swivel and blank offset and the gear's tilt
+    change sign, the vertical motion on both members; H5, H6 and MODROLL_720G in thousandths; TLTk and SWk in rad."""
     pair = _full_pair("left", False)
-    text = hfm_text(pair)
-    pin, gear = text.split("TYPE FACEMILLED_GEAR")
+    pin, gear = hfm_text(pair).split("TYPE FACEMILLED_GEAR")
+    pin = pin.split("CONVEX")[0]
+    gear = gear.split("CONVEX")[0]
     pm, gm = pair.pinion.concave.machine, pair.gear.concave.machine
-    assert f"CRADLEANGLE {-math.degrees(pm.cradle_angle)!r}" in pin
-    assert f"CRADLEANGLE {math.degrees(gm.cradle_angle)!r}" in gear
-    assert f"TILTANGLE {-math.degrees(pm.tilt)!r}" in pin and f"V1 {-pm.vertical_motion[0]!r}" in pin
-    assert f"V1 {-gm.vertical_motion[0]!r}" in gear and f"MODROLL_2C {2 * pm.modified_roll_c!r}" in pin
+    deg = math.degrees
+    for text, ms, s in ((pin, pm, dict(q=-1, i=-1, j=-1, E=-1)), (gear, gm, dict(q=1, i=-1, j=1, E=1))):
+        assert _value(text, "CRADLEANGLE") == pytest.approx(s["q"] * deg(ms.cradle_angle), rel=1e-14)
+        assert _value(text, "TILTANGLE") == pytest.approx(s["i"] * deg(ms.tilt), rel=1e-14)
+        assert _value(text, "SWIVELANGLE") == pytest.approx(s["j"] * deg(ms.swivel), rel=1e-14)
+        assert _value(text, "BLANKOFFSET") == pytest.approx(s["E"] * ms.blank_offset, rel=1e-14)
+        assert _value(text, "V1") == pytest.approx(-ms.vertical_motion[0], rel=1e-14)
+        assert _value(text, "R3") == pytest.approx(ms.radial_motion[2], rel=1e-14)
+        assert _value(text, "H5") == pytest.approx(1e3 * ms.helical_motion[4], rel=1e-14)
+        assert _value(text, "MODROLL_2C") == pytest.approx(2 * ms.modified_roll_c, rel=1e-14)
+        assert _value(text, "MODROLL_720G") == pytest.approx(720e3 * ms.modified_roll_g, rel=1e-14)
+        assert _value(text, "TLT2") == pytest.approx(ms.tilt_motion[1], rel=1e-14)
+        assert _value(text, "SW5") == pytest.approx(ms.swivel_motion[4], rel=1e-14)
 
 
-def test_a_right_hand_pair_is_the_mirror_image_of_the_left_hand_one():
-    """The same script read with the other hand cuts the mirror image (y -> -y in the member frame) of each flank."""
-    bl = design_blank(BevelBasicData(hand="right"))
-    pair = BevelPair(bl, gear_settings(bl), pinion_settings(bl))
+@pytest.mark.parametrize("motions", [False, True])
+def test_a_right_hand_pair_is_the_mirror_image_of_the_left_hand_one(motions):
+    """The same script read with the other hand cuts the mirror image (y -> -y in the member frame) of each flank:
+    basic settings, and tilt, swivel, modified roll and every motion to the 6th order (curved blades, rems)."""
+    full = _full_pair("left", False)
+    bl = full.blank
+    gear = gear_settings(bl)
+    if motions:                 # the pinion's sheet uses every keyword; the gear's every roll and motion term
+        terms = {k: getattr(full.gear.concave.machine, k) for k in ("modified_roll_c", "modified_roll_d",
+                 "modified_roll_e", "modified_roll_f", "modified_roll_g", *MOTIONS)}
+        gear = MemberCut("gear", gear.z, **{s: FlankCut(dataclasses.replace(gear.flank(s).machine, swivel=-0.4,
+                                                                            **terms), gear.flank(s).cutter)
+                                            for s in ("concave", "convex")})
+    pair = BevelPair(bl, gear, full.pinion if motions else pinion_settings(bl))
     text = hfm_text(pair)
     assert "HAND_PINION LEFT" in text
     other = parse_hfm(text.replace("HAND_PINION LEFT", "HAND_PINION RIGHT").replace("HAND LEFT", "HAND X")
@@ -189,11 +216,18 @@ def _edit(old: str, new: str, count: int = 1) -> str:
     (_edit("\t\t\tGEAR_TYPE generated\n", "\t\t\tGEAR_TYPE generated\n\t\t\tTOOTHTHICKNESS 3\n"),
      r"line \d+: gear\.TOOTHTHICKNESS' = '3': in the gear's section one of GEAR_TYPE"),
     (_edit("USE_SPRD_BLD_THICKNESS TRUE", "USE_SPRD_BLD_THICKNESS FALSE"), r"USE_SPRD_BLD_THICKNESS' = 'FALSE'"),
-    (SCRIPT.read_text().rsplit("\t\t\t\tCUTTER", 1)[0], r"line \d+: gear\.convex\.CUTTER' = None: a block the script must give"),
+    (SCRIPT.read_text().rsplit("\t\t\t\tCUTTER", 1)[0],
+     r"line \d+: gear\.convex\.CUTTER' = None: a block the script must give"),
 ])
 def test_bad_scripts_name_the_line_and_what_is_allowed(text, match):
     with pytest.raises(CaseError, match=match):
         parse_hfm(text, "bad.txt")
+
+
+def test_a_hypoid_pair_is_refused_naming_the_line():
+    text = _edit("SPIRALANGLE 35.0", "SPIRALANGLE 30.0")
+    with pytest.raises(CaseError, match=r"line \d+: pinion\.COMMON\.SPIRALANGLE' = 30\.0: the gear's 35\.0"):
+        case_data(parse_hfm(text))
 
 
 def test_menus_of_the_program_are_skipped_and_logged(caplog):
@@ -212,7 +246,7 @@ def test_convert_and_export_commands(tmp_path, capsys):
     case = tmp_path / "spygo.toml"
     assert main(["convert", str(SCRIPT), "--out", str(case), "--torque", "100"]) == 0
     text = case.read_text()
-    assert "# not carried: pinion FACEANGLE" in text and "torque_nm = [100.0]" in text
+    assert "# not carried: pinion FACEANGLE" in text and tomllib.loads(text)["load"]["torque_nm"] == [100.0]
     out = tmp_path / "back.hfm"
     assert main(["export", str(case), "--hfm", str(out)]) == 0
     assert read_hfm(out).sheets == read_hfm(SCRIPT).sheets
