@@ -3,10 +3,12 @@
 The case takes the settings sheets as they stand and the basic data of its blank from the ``COMMON`` blocks: teeth,
 spiral angle, face width, shaft angle = sum of the pitch angles, module = 2 A_0 sin(delta_2) / z_2, taper uniform
 when the face angles equal the pitch angles; the pressure angle and the cutter radius from the gear's blades (their
-mean blade angle and mean point radius: the gear's standard cut centres its blades on the cutter radius). The blank
-is then designed by the case's Gleason formulas (:mod:`ltca.geometry.bevel.blank`): where the script's face, back
-and front angles, face and root apexes differ from it the differences are logged and listed (``notes``), since a
-case does not carry the script's own cones.
+mean blade angle and mean point radius: the gear's standard cut centres its blades on the cutter radius). Where a
+member's face and root cones differ from those the case designs (Gleason's formulas,
+:mod:`ltca.geometry.bevel.blank`), the case gives them (``[bevel.blank.<member>]``): FACEANGLE, FACEAPEX, ROOTAPEX
+and the root angle, BASECONEANGLE (SpyGO writes the root angle there: the rim's base cone parallel to the root cone)
+or else the concave flank's machine ROOTANGLE. What the case cannot hold (back and front cones other than normal to
+the pitch cone, the FE rim) is logged and listed (``notes``).
 """
 from __future__ import annotations
 
@@ -14,27 +16,14 @@ import logging
 import math
 from pathlib import Path
 
-from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.blank import BevelBasicData, cone_apexes, design_blank
 
 from ..errors import CaseError
 from .hfm_script import HfmScript
 
-__all__ = ["case_data", "case_toml", "blank_apexes"]
+__all__ = ["case_data", "case_toml"]
 
 log = logging.getLogger(__name__)
-
-
-def blank_apexes(blank, member: str) -> tuple[float, float]:
-    """Face and root apex of a member's blank (:class:`ltca.geometry.bevel.blank.BevelBlank`) beyond the crossing
-    point along its axis, mm, the script's FACEAPEX and ROOTAPEX: the cones through the heel's face and root
-    points (``-Z`` of the apex in the member frame, whose origin is the pitch apex at the crossing point)."""
-    mb, A0 = blank.member(member), blank.outer_cone_distance
-    g = mb.pitch_angle
-    out = []
-    for off, ang in ((mb.addendum, mb.face_angle), (-mb.dedendum, mb.root_angle)):
-        Z, rho = A0 * math.cos(g) - off * math.sin(g), A0 * math.sin(g) + off * math.cos(g)
-        out.append(-(Z - rho * math.cos(ang) / math.sin(ang)))
-    return out[0], out[1]
 
 
 def case_data(script: HfmScript, name: str | None = None, torques: list[float] | None = None
@@ -66,7 +55,7 @@ def case_data(script: HfmScript, name: str | None = None, torques: list[float] |
         raise CaseError(at("pinion", "PITCHANGLE"), p["PITCHANGLE"], f"the pitch angle of {z1}/{z2} teeth at the "
                         f"shaft angle {p['PITCHANGLE'] + g['PITCHANGLE']!r} deg (rolling pitch cones)", f)
     gs = script.sheets["gear"]
-    uniform = all(abs(c["FACEANGLE"] - c["PITCHANGLE"]) < 1e-9 for c in (p, g))
+    uniform = all(c["FACEANGLE"] is not None and abs(c["FACEANGLE"] - c["PITCHANGLE"]) < 1e-9 for c in (p, g))
     bevel = {"pinion_teeth": z1, "gear_teeth": z2, "module_mm": 2 * g["OUTERCONEDIST"] * math.sin(g2) / z2,
              "face_width_mm": g["FACEWIDTH"], "spiral_angle_deg": g["SPIRALANGLE"],
              "pressure_angle_deg": 0.5 * (gs["concave"]["blade_angle_deg"] + gs["convex"]["blade_angle_deg"]),
@@ -80,11 +69,12 @@ def case_data(script: HfmScript, name: str | None = None, torques: list[float] |
             "bevel": bevel}
     if torques:
         data["load"] = {"torque_nm": [float(t) for t in torques]}
-    return data, list(script.remarks) + _blank_notes(script, bevel)
+    return data, list(script.remarks) + _blank(script, bevel)
 
 
-def _blank_notes(script: HfmScript, bevel: dict) -> list[str]:
-    """The script's cones against the blank the case designs from ``bevel`` (logged, one line each)."""
+def _blank(script: HfmScript, bevel: dict) -> list[str]:
+    """The script's cones against the blank the case designs from ``bevel``: ``bevel["blank"]`` where they differ
+    (1e-6 deg or mm); returns the notes on what the case does not carry (logged)."""
     try:
         bl = design_blank(BevelBasicData(
             z1=bevel["pinion_teeth"], z2=bevel["gear_teeth"], module=bevel["module_mm"],
@@ -94,17 +84,28 @@ def _blank_notes(script: HfmScript, bevel: dict) -> list[str]:
             cutter_radius=bevel["cutter_radius_mm"], taper=bevel["taper"]))
     except ValueError:
         return []                           # the case's own check names the field
-    notes = []
+    notes, cones = [], {}
     for m in ("pinion", "gear"):
         c, mb = script.common[m], bl.member(m)
-        face_apex, root_apex = blank_apexes(bl, m)
-        ours = {"FACEANGLE": math.degrees(mb.face_angle), "FACEAPEX": face_apex, "ROOTAPEX": root_apex,
-                "BACKANGLE": math.degrees(mb.pitch_angle), "FRONTANGLE": math.degrees(mb.pitch_angle)}
-        for k, v in ours.items():
-            if abs(c[k] - v) > 1e-6:
-                notes.append(f"{m} {k} {c[k]:.6g} in the script, {v:.6g} in the blank designed here "
-                             f"({'deg' if k.endswith('ANGLE') else 'mm'}; Gleason's formulas, "
-                             "the heel and toe normal to the pitch cone)")
+        root = c["BASECONEANGLE"] if c["BASECONEANGLE"] is not None else \
+            script.sheets[m]["concave"]["machine_root_angle_deg"]
+        given = {"face_angle_deg": c["FACEANGLE"], "root_angle_deg": root, "face_apex_mm": c["FACEAPEX"],
+                 "root_apex_mm": c["ROOTAPEX"]}
+        ours = dict(zip(given, (math.degrees(mb.face_angle), math.degrees(mb.root_angle), *cone_apexes(bl, m))))
+        if None in given.values():
+            notes.append(f"{m} cones: the blank designed here (the script gives no "
+                         f"{', '.join(k for k in ('FACEANGLE', 'FACEAPEX', 'ROOTAPEX') if c[k] is None)})")
+        elif any(abs(given[k] - ours[k]) > 1e-6 for k in given):
+            cones[m] = given
+            log.info("%s: %s cones as the script gives them (face angle %.6g, root angle %.6g deg, apexes %.6g, "
+                     "%.6g mm; designed here: %.6g, %.6g deg, %.6g, %.6g mm)", script.file or "script", m,
+                     *given.values(), *ours.values())
+        for k in ("BACKANGLE", "FRONTANGLE"):
+            if c[k] is not None and abs(c[k] - math.degrees(mb.pitch_angle)) > 1e-6:
+                notes.append(f"{m} {k} {c[k]:.6g} deg in the script: the heel and toe here are normal to the "
+                             f"pitch cone ({math.degrees(mb.pitch_angle):.6g} deg)")
+    if cones:
+        bevel["blank"] = cones
     for line in notes:
         log.warning("%s: %s", script.file or "script", line)
     return notes

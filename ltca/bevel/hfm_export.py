@@ -19,12 +19,12 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from ltca.geometry.bevel.blank import cone_apexes
 from ltca.geometry.bevel.sheet import member_sheet
 from ltca.geometry.bevel.tca import BevelPair
 
 from ..errors import CaseError
 from . import hfm_format as F
-from .hfm_case import blank_apexes
 
 __all__ = ["hfm_text", "export_hfm"]
 
@@ -36,7 +36,7 @@ def _num(x: float) -> str:
 def _common(pair: BevelPair, member: str, rim: float) -> list[str]:
     bl = pair.blank
     mb = bl.member(member)
-    face_apex, root_apex = blank_apexes(bl, member)
+    face_apex, root_apex = cone_apexes(bl, member)
     deg = math.degrees
     val = {"SPIRALANGLE": deg(bl.data.spiral_angle), "OUTERCONEDIST": bl.outer_cone_distance,
            "FACEWIDTH": bl.face_width, "FACEANGLE": deg(mb.face_angle), "BACKANGLE": deg(mb.pitch_angle),

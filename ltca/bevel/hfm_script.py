@@ -200,8 +200,8 @@ def _assemble(blocks: dict, hand: str | None, gear_type: tuple, skipped: tuple, 
                                 "CUTTER", file)
         c = blocks[(m, "COMMON", None)]
         where = f"{m}.COMMON"
-        common[m] = {k: _num(c, k, where, file, 0.0 if k in ("PITCHAPEX", "BACKANGLE", "FRONTANGLE", "FACEAPEX",
-                                                               "ROOTAPEX", "BASECONEANGLE", "BASECONEAPEX") else None)
+        common[m] = {k: _num(c, k, where, file, 0.0) if k == "PITCHAPEX" else _num(c, k, where, file) if k in
+                     ("SPIRALANGLE", "OUTERCONEDIST", "FACEWIDTH", "PITCHANGLE") or k in c else None
                      for k in F.COMMON}
         common[m]["NTEETH"] = _num(c, "NTEETH", where, file)
         if common[m]["NTEETH"] != int(common[m]["NTEETH"]):

@@ -15,13 +15,13 @@ import tomllib
 
 from fixtures.paths import REFERENCE
 from ltca.bevel.analysis import build_pair
-from ltca.bevel.case import bevel_case_from_data
+from ltca.bevel.case import bevel_case_from_data, case_blank
 from ltca.bevel.hfm_case import case_data
 from ltca.bevel.hfm_export import hfm_text
 from ltca.bevel.hfm_script import parse_hfm, read_hfm
 from ltca.cli import main
 from ltca.errors import CaseError
-from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.blank import BevelBasicData, cone_apexes, design_blank, with_cones
 from ltca.geometry.bevel.cutter import HeadCutter
 from ltca.geometry.bevel.generation import generate_member, solve_axial_points, surface_state
 from ltca.geometry.bevel.machine import MOTIONS, FlankCut, MachineSettings, MemberCut, gear_settings, pinion_settings
@@ -68,8 +68,30 @@ def test_spygo_script_gives_the_settings_compare_spygo_derives(spygo_case):
     for k, want in (("module_mm", 4.169), ("face_width_mm", 36.83), ("spiral_angle_deg", 35.0),
                     ("shaft_angle_deg", 95.0), ("cutter_radius_mm", 95.25), ("pressure_angle_deg", 20.0)):
         assert b[k] == pytest.approx(want, rel=1e-12), k
-    # SpyGO's blank (ISO 23509 depths) is not the Gleason blank the case designs: its face cones are listed
-    assert any(n.startswith("pinion FACEANGLE 19.3362 in the script") for n in notes)
+    # SpyGO's blank (ISO 23509 depths) is not the Gleason blank the case designs: the case gives its cones
+    assert notes == ["gear HAND LEFT (line 144) taken as RIGHT: the pair's hand is the pinion's, LEFT"]
+    bl = case_blank(case)
+    for m, face, root, t_f, t_r in (("pinion", 19.336171904255103, 15.64096727073747, -2.2196693296425956,
+                                     -0.001306176586991889),
+                                    ("gear", 79.35903272926254, 75.6638280957449, -0.7474565076452753, 0.0)):
+        mb = bl.member(m)
+        assert math.degrees(mb.face_angle) == pytest.approx(face, rel=1e-14)
+        assert math.degrees(mb.root_angle) == pytest.approx(root, rel=1e-14)
+        assert cone_apexes(bl, m) == pytest.approx((t_f, t_r), abs=1e-12)
+
+
+def test_given_cones_are_the_designed_blank_when_they_are_its_own():
+    """with_cones of the designed blank's own cones (cone_apexes) is the designed blank (Gleason's formulas)."""
+    for taper in ("standard", "uniform"):
+        bl = design_blank(BevelBasicData(shaft_angle=math.radians(95.0), taper=taper))
+        for m in ("pinion", "gear"):
+            mb = bl.member(m)
+            again = with_cones(bl, m, mb.face_angle, mb.root_angle, *cone_apexes(bl, m))
+            for f in dataclasses.fields(mb):
+                x, y = getattr(mb, f.name), getattr(again.member(m), f.name)
+                assert x == y if isinstance(x, str) else x == pytest.approx(y, rel=1e-12, abs=1e-12), (m, f.name)
+            for k in ("working_depth", "whole_depth", "clearance"):
+                assert getattr(again, k) == pytest.approx(getattr(bl, k), rel=1e-12, abs=1e-12), k
 
 
 def test_spygo_pair_read_from_the_script_cuts_spygo_flanks(spygo_case):
@@ -186,7 +208,7 @@ def test_shipped_pair_through_the_script_cuts_the_same_flanks_and_te(bevel_pair)
     points (1e-9 mm) and unloaded TE."""
     script = parse_hfm(hfm_text(bevel_pair, "spiral_bevel_cao2008"))
     data, notes = case_data(script)
-    assert not notes
+    assert not notes and "blank" not in data["bevel"]            # the cones are the ones the case designs
     pair2 = build_pair(bevel_case_from_data(data, "through the script"))
     for m in ("gear", "pinion"):
         f1, f2 = generate_member(getattr(bevel_pair, m), bevel_pair.blank, 9, 11), \
@@ -230,6 +252,14 @@ def test_a_hypoid_pair_is_refused_naming_the_line():
         case_data(parse_hfm(text))
 
 
+def test_given_cones_that_make_no_blank_are_refused(spygo_case):
+    data = spygo_case[1]
+    bad = dict(data, bevel=dict(data["bevel"], blank={"pinion": dict(data["bevel"]["blank"]["pinion"],
+                                                                     root_angle_deg=18.0)}))
+    with pytest.raises(CaseError, match=r"bevel\.blank\.pinion.*pitch angle 17\.4147 deg.*root_angle"):
+        bevel_case_from_data(bad, "x")
+
+
 def test_menus_of_the_program_are_skipped_and_logged(caplog):
     shaft = "\t\tSHAFT\n\t\t\tSHAFT 1\n\t\t\tAXIALPOSNSHAFT -3.0\n\t\t\tSEGMENT\n\t\t\t\tTYPE DEFINEGEOMETRY\n" \
             "\t\t\tEXIT\n\t\tEXIT\n"
@@ -246,7 +276,8 @@ def test_convert_and_export_commands(tmp_path, capsys):
     case = tmp_path / "spygo.toml"
     assert main(["convert", str(SCRIPT), "--out", str(case), "--torque", "100"]) == 0
     text = case.read_text()
-    assert "# not carried: pinion FACEANGLE" in text and tomllib.loads(text)["load"]["torque_nm"] == [100.0]
+    assert "# not carried: gear HAND LEFT" in text and tomllib.loads(text)["load"]["torque_nm"] == [100.0]
+    assert tomllib.loads(text)["bevel"]["blank"]["gear"]["face_angle_deg"] == 79.35903272926254
     out = tmp_path / "back.hfm"
     assert main(["export", str(case), "--hfm", str(out)]) == 0
     assert read_hfm(out).sheets == read_hfm(SCRIPT).sheets
@@ -254,7 +285,8 @@ def test_convert_and_export_commands(tmp_path, capsys):
     bad.write_text(_edit("RATIOROLL 3.339685914944047", "RATIOROLL abc"))
     capsys.readouterr()
     for args in (["convert", str(bad)], ["export", str(case), "--hfm", str(tmp_path)], ["export", str(case)],
-                 ["convert", str(SCRIPT), "--out", str(tmp_path / "no" / "x.toml")]):
+                 ["convert", str(SCRIPT), "--out", str(tmp_path / "no" / "x.toml")],
+                 ["convert", str(SCRIPT), "--out", str(tmp_path)], ["convert", str(SCRIPT), "--torque", "0"]):
         assert main(args) == 2, args
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and "Traceback" not in err and err.startswith(f"ltca {args[0]}: error"), err
