@@ -211,10 +211,10 @@ def _assemble(blocks: dict, hand: str | None, gear_type: tuple, skipped: tuple, 
             raise CaseError(f"line {c['USE_SPRD_BLD_THICKNESS'][1]}: {where}.USE_SPRD_BLD_THICKNESS", "FALSE",
                             "TRUE: the tooth thickness is the one the cutters' point radii cut (a prescribed "
                             "NORMAL_THICKNESS is not modelled)", file)
-        unused = sorted(k for k in ("BASECONEANGLE", "BASECONEAPEX", "TYPE_THICKNESS", "NORMAL_THICKNESS") if k in c)
+        unused = sorted(k for k in ("BASECONEAPEX", "TYPE_THICKNESS", "NORMAL_THICKNESS") if k in c)
         if unused:
-            log.info("%s: %s: %s not used (the rim of that program's FE model; the thickness the cutters cut)",
-                     file or "script", where, ", ".join(unused))
+            log.info("%s: %s: %s not used (the rim of that program's FE model; the thickness is the one the cutters "
+                     "cut)", file or "script", where, ", ".join(unused))
     hand = hand or common["pinion"]["HAND"] or {"left": "right", "right": "left"}.get(common["gear"]["HAND"])
     if hand is None:
         raise CaseError("pairs.PAIRS.HAND_PINION", None, "the pinion's hand: HAND_PINION in PAIRS or HAND in the "
