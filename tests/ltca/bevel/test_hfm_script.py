@@ -280,7 +280,11 @@ def test_convert_and_export_commands(tmp_path, capsys):
     assert tomllib.loads(text)["bevel"]["blank"]["gear"]["face_angle_deg"] == 79.35903272926254
     out = tmp_path / "back.hfm"
     assert main(["export", str(case), "--hfm", str(out)]) == 0
-    assert read_hfm(out).sheets == read_hfm(SCRIPT).sheets
+    back, first = read_hfm(out), read_hfm(SCRIPT)
+    assert back.sheets == first.sheets
+    for m in ("pinion", "gear"):                    # the case's given cones written back
+        for k in ("FACEANGLE", "FACEAPEX", "ROOTAPEX", "BASECONEANGLE"):
+            assert back.common[m][k] == pytest.approx(first.common[m][k], rel=1e-12, abs=1e-12), (m, k)
     bad = tmp_path / "bad.hfm"
     bad.write_text(_edit("RATIOROLL 3.339685914944047", "RATIOROLL abc"))
     capsys.readouterr()
