@@ -80,6 +80,18 @@ def test_spygo_script_gives_the_settings_compare_spygo_derives(spygo_case):
         assert cone_apexes(bl, m) == pytest.approx((t_f, t_r), abs=1e-12)
 
 
+def test_spygo_gear_cutter_centre_is_the_standard_one_of_the_read_blank(spygo_case):
+    """An independent check of the radial setting and cradle angle as read (sign included): the gear cutter centre
+    that our own standard settings put at the mean pitch point for the read blank's spiral angle and cutter radius
+    (ltca.geometry.bevel.machine.gear_settings) is SpyGO's."""
+    script, _, _, case = spygo_case
+    std = gear_settings(case_blank(case))
+    for s in ("concave", "convex"):
+        sheet = script.sheets["gear"][s]
+        assert sheet["radial_setting_mm"] == pytest.approx(std.flank(s).machine.radial_setting, rel=1e-12)
+        assert sheet["cradle_angle_deg"] == pytest.approx(math.degrees(std.flank(s).machine.cradle_angle), rel=1e-12)
+
+
 def test_given_cones_are_the_designed_blank_when_they_are_its_own():
     """with_cones of the designed blank's own cones (cone_apexes) is the designed blank (Gleason's formulas)."""
     for taper in ("standard", "uniform"):
