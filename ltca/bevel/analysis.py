@@ -44,6 +44,12 @@ def synthesis_error(case: BevelCase, exc: Exception, file: str | None = None) ->
     asm = case.assembly or {}
     mounted = [f"assembly.{key}" for name, key in (("E", "E_mm"), ("P", "P_mm"), ("G", "G_mm"),
                                                    ("d_sigma", "sigma_deg")) if asm.get(name, 0.0) != 0.0]
+    if case.cuts:                           # the pair as its settings sheets cut it: no synthesis to blame
+        flank = {"working": "concave", "coast": "convex"}.get(side, "concave")
+        return DesignError(f"spiral bevel TCA failed ({type(exc).__name__}: {str(exc)[:160]})",
+                           (*mounted, f"bevel.settings.pinion.{flank}", "bevel.settings.gear"),
+                           ("smaller assembly errors, or " if mounted else "") + "settings of a finished design "
+                           "(the flanks must touch at an interior point near the mean point)", file=file)
     return DesignError(f"spiral bevel synthesis/TCA failed ({type(exc).__name__}: {str(exc)[:160]})",
                        (*mounted, f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
                         f"bevel.{side}.ellipse_major_mm", "bevel.spiral_angle_deg", "bevel.cutter_radius_mm"),

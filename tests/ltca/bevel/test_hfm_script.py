@@ -297,6 +297,10 @@ def test_convert_and_export_commands(tmp_path, capsys):
     for m in ("pinion", "gear"):                    # the case's given cones written back
         for k in ("FACEANGLE", "FACEAPEX", "ROOTAPEX", "BASECONEANGLE"):
             assert back.common[m][k] == pytest.approx(first.common[m][k], rel=1e-12, abs=1e-12), (m, k)
+    # SpyGO's unsynthesised starting pair has no interior tangency: exit 2 naming its settings, not synthesis targets
+    capsys.readouterr()
+    assert main(["tca", str(case), "--out", str(tmp_path / "tca")]) == 2
+    assert "'bevel.settings.pinion.concave'" in capsys.readouterr().err
     bad = tmp_path / "bad.hfm"
     bad.write_text(_edit("RATIOROLL 3.339685914944047", "RATIOROLL abc"))
     capsys.readouterr()
