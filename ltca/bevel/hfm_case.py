@@ -31,9 +31,9 @@ def case_data(script: HfmScript, name: str | None = None, torques: list[float] |
     """The bevel case dict of a script (module docstring) and the notes on what the case does not carry.
 
     Returns ``(data, notes)``: ``data`` as read from a case file (``[case]``, ``[bevel]`` with
-    ``[bevel.settings.*]``, ``[load]`` when ``torques`` (N m on the pinion) are given), ``notes`` the script's
-    remarks (:class:`ltca.bevel.hfm_script.HfmScript`) and one line per blank value of the script that the case's
-    designed blank does not reproduce within 1e-6 (mm, deg)."""
+    ``[bevel.settings.*]``, ``[bevel.blank.*]`` where the script's cones are not the designed ones, ``[load]`` when
+    ``torques`` (N m on the pinion) are given), ``notes`` the script's remarks
+    (:class:`ltca.bevel.hfm_script.HfmScript`) and one line per blank value the case does not hold."""
     f = script.file
     p, g = script.common["pinion"], script.common["gear"]
 

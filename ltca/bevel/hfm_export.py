@@ -9,10 +9,11 @@ is written, zeros included, with Python's shortest round-trip numbers, so :func:
 reads back the same settings sheets (up to the rad <-> deg and thousandths scaling of a few motion terms, 1e-16
 relative).
 
-The blank is the case's: face, back and front angles, pitch, face and root apexes of the designed cones (the heel
-and toe normal to the pitch cone: back and front angle = pitch angle). ``BASECONEANGLE`` and ``BASECONEAPEX`` give
-the rim of that program's FE model, a cone parallel to the root cone ``rim_thickness`` below it (default: one whole
-depth); the bodies here run to the case's ``[mounting]`` instead.
+The blank is the case's (designed, or its given cones): face, back and front angles, pitch, face and root apexes
+(the heel and toe normal to the pitch cone: back and front angle = pitch angle). ``BASECONEANGLE`` and
+``BASECONEAPEX`` give the rim of that program's FE model, as SpyGO writes it: a cone parallel to the root cone (its
+angle the root angle) ``rim_thickness`` below it (default: one whole depth); the bodies here run to the case's
+``[mounting]`` instead.
 """
 from __future__ import annotations
 
