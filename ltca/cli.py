@@ -1,4 +1,5 @@
-"""The ``ltca`` command: run, tca, export, import, forming, study, optimise, convergence, validate, bench, budget, chain.
+"""The ``ltca`` command: run, tca, export, import, convert, forming, study, optimise, convergence, validate, bench,
+budget, chain.
 
 User mistakes (bad case files, bad arguments) end with exit status 2 and one message naming the
 field, its value and what is allowed; no traceback. A solver that does not converge ends with
@@ -166,10 +167,35 @@ def _cmd_import(a: argparse.Namespace) -> int:
 
 
 def _cmd_export(a: argparse.Namespace) -> int:
-    from .export import export_step
-    res = export_step(a.case, a.step, progress=None if a.quiet else print)
-    for m in res.members:
-        print(f"{m.path}\t{m.member}\t{m.z} teeth\t{m.volume:.1f} mm^3")
+    if a.step is None and a.hfm is None:
+        raise CaseError("--step", None, "give --step DIR (STEP solids) and/or --hfm FILE (a bevel pair's "
+                        "HypoidFaceMilled script)")
+    if a.hfm is not None:
+        if not _is_bevel(a.case):
+            raise CaseError("--hfm", a.hfm, "a bevel case's pair (the script holds face-milled bevel members)")
+        from .bevel.hfm_export import export_hfm
+        print(f"{export_hfm(a.case, a.hfm)}\tHypoidFaceMilled script (blank, machine and cutter blocks)")
+    if a.step is not None:
+        from .export import export_step
+        res = export_step(a.case, a.step, progress=None if a.quiet else print)
+        for m in res.members:
+            print(f"{m.path}\t{m.member}\t{m.z} teeth\t{m.volume:.1f} mm^3")
+    return 0
+
+
+def _cmd_convert(a: argparse.Namespace) -> int:
+    from .bevel.case import bevel_case_from_data, check_bevel_torques
+    from .bevel.hfm_case import case_data, case_toml
+    from .bevel.hfm_script import read_hfm
+    torques = list(check_bevel_torques(list(a.torque), "--torque")) if a.torque else None
+    data, notes = case_data(read_hfm(a.file), torques=torques)
+    bevel_case_from_data(data, a.file)             # every check of a case file, before anything is written
+    text = case_toml(data, notes, a.file)
+    if a.out is None:
+        print(text, end="")
+    else:
+        Path(a.out).write_text(text, encoding="utf-8")
+        print(f"wrote {a.out} ({len(notes)} value(s) of the script not carried as written, listed in the file)")
     return 0
 
 
@@ -257,11 +283,26 @@ def build_parser() -> argparse.ArgumentParser:
                         description="Writes each member of a cylindrical or bevel case, every tooth, as an "
                                     "OpenCASCADE solid in a STEP file (mm, the member's body frame), and prints "
                                     "each file with its volume. A bevel member takes minutes (one boolean fuse "
-                                    "of all teeth with the blank).")
+                                    "of all teeth with the blank). --hfm writes a bevel pair's settings as a "
+                                    "HypoidFaceMilled / Transmission3D input script (`ltca convert` reads it back).")
     ex.add_argument("case", help="case file (.toml) or a shipped case's name")
-    ex.add_argument("--step", required=True, metavar="DIR", help="folder for the STEP files (made if missing)")
+    ex.add_argument("--step", metavar="DIR", help="folder for the STEP files (made if missing)")
+    ex.add_argument("--hfm", metavar="FILE", help="a bevel pair's HypoidFaceMilled / Transmission3D script: blank, "
+                    "machine and cutter blocks of both members (given or synthesised settings)")
     ex.add_argument("--quiet", action="store_true", help="no progress lines")
     ex.set_defaults(func=_cmd_export)
+
+    cv = sub.add_parser("convert", help="a HypoidFaceMilled / Transmission3D script as a bevel case file",
+                        description="Reads the blank, machine and cutter blocks of both members of a "
+                                    "HypoidFaceMilled / Transmission3D input script and writes the pair as a bevel "
+                                    "case (its settings sheets as given) that `ltca run` accepts. The program's other "
+                                    "menus are skipped (-v lists them); blank values the case's designed blank does "
+                                    "not reproduce are listed in the file.")
+    cv.add_argument("file", help="the script (text)")
+    cv.add_argument("--out", help="case file to write (default: print the case)")
+    cv.add_argument("--torque", type=float, nargs="+", metavar="NM",
+                    help="pinion torque(s) in N m for the case's [load] (> 0 drives on the pinion's concave flank)")
+    cv.set_defaults(func=_cmd_convert)
 
     k = sub.add_parser("keys", help="reference of every case key: unit, default, allowed range, meaning",
                        description="Prints every key of the case files of every kind (cylindrical, bevel, "
@@ -421,15 +462,15 @@ def _resolve_files(a: argparse.Namespace) -> None:
             a.study = str(study_path(a.study))
 
 
-def _check_out_file(path: Path) -> None:
+def _check_out_file(path: Path, option: str = "--out") -> None:
     """A file an option names for writing: not a folder, in a folder that exists and can be written."""
     if path.is_dir():
-        raise CaseError("--out", str(path), "a file to write, not a folder")
+        raise CaseError(option, str(path), "a file to write, not a folder")
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
-        raise CaseError("--out", str(path), f"a file in an existing folder ({folder} does not exist)")
+        raise CaseError(option, str(path), f"a file in an existing folder ({folder} does not exist)")
     if not os.access(folder, os.W_OK):
-        raise CaseError("--out", str(path), f"a file in a writable folder ({folder} is not writable)")
+        raise CaseError(option, str(path), f"a file in a writable folder ({folder} is not writable)")
 
 
 def _check_options(a: argparse.Namespace) -> None:
@@ -463,11 +504,15 @@ def _check_options(a: argparse.Namespace) -> None:
     out = getattr(a, "out", None)
     if out is not None and not str(out).strip():
         raise CaseError("--out", out, "a non-empty path")
-    if out is not None and a.command == "import":
+    if out is not None and a.command in ("import", "convert"):
         _check_out_file(Path(out))
     elif out is not None:                   # every command that writes a folder: refused before any work
         from .outputs import check_out_dir
         check_out_dir(out)
+    if getattr(a, "hfm", None) is not None:
+        if not a.hfm.strip():
+            raise CaseError("--hfm", a.hfm, "a non-empty path")
+        _check_out_file(Path(a.hfm), "--hfm")
     if getattr(a, "cache", None) is not None:
         if not a.cache.strip():
             raise CaseError("--cache", a.cache, "a folder for the mesh cache (a non-empty path)")

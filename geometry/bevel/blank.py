@@ -11,11 +11,11 @@ Subscript 1 is the pinion, 2 the gear.  Units: mm, rad.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-__all__ = ["BevelBasicData", "MemberBlank", "BevelBlank", "design_blank"]
+__all__ = ["BevelBasicData", "MemberBlank", "BevelBlank", "design_blank", "cone_apexes", "with_cones"]
 
 
 def _check(name: str, value: float, lo: float, hi: float, lo_open: bool = False) -> None:
@@ -237,3 +237,59 @@ def design_blank(data: BevelBasicData) -> BevelBlank:
                       inner_cone_distance=float(Ai), face_width=float(b), working_depth=float(hk),
                       whole_depth=float(ht), clearance=float(c), mean_normal_module=float(m_mn),
                       mean_normal_pitch=float(p_mn), m90=float(m90))
+
+
+def cone_apexes(blank: BevelBlank, which: str) -> tuple[float, float]:
+    """Face and root cone apexes of ``which`` beyond the crossing point along its axis (ISO 23509 t_zF, t_zR), mm:
+    ``-Z`` of the apex of the cone through the heel's face (root) point, in the member frame whose origin is the
+    pitch apex at the crossing point."""
+    mb, A0 = blank.member(which), blank.outer_cone_distance
+    g = mb.pitch_angle
+    out = []
+    for off, ang in ((mb.addendum, mb.face_angle), (-mb.dedendum, mb.root_angle)):
+        Z, rho = A0 * np.cos(g) - off * np.sin(g), A0 * np.sin(g) + off * np.cos(g)
+        out.append(float(-(Z - rho * np.cos(ang) / np.sin(ang))))
+    return out[0], out[1]
+
+
+def with_cones(blank: BevelBlank, which: str, face_angle: float, root_angle: float, face_apex: float,
+               root_apex: float) -> BevelBlank:
+    """The blank with ``which``'s face and root cones given instead of designed (pitch cone, face width, thickness
+    kept), e.g. a blank read from another program.
+
+    Parameters
+    ----------
+    blank : BevelBlank
+    which : ``"pinion"`` or ``"gear"``
+    face_angle, root_angle : float
+        Cone angles from the axis, rad, ``0 < root_angle <= pitch angle <= face_angle < pi/2``.
+    face_apex, root_apex : float
+        Apexes beyond the crossing point along the axis, mm (:func:`cone_apexes`).
+
+    Returns
+    -------
+    BevelBlank
+        Heel addendum ``a = (A0 sin(gf - g) + t_zF sin gf) / cos(gf - g)`` and dedendum
+        ``b = (A0 sin(g - gr) - t_zR sin gr) / cos(g - gr)`` (the heel's face and root points, normal to the pitch
+        generatrix at the outer cone distance A0, on the given cones); mean values half a face width in; working
+        depth a1 + a2, whole depth the larger a + b.
+    """
+    mb, A0, bw = blank.member(which), blank.outer_cone_distance, blank.face_width
+    g = mb.pitch_angle
+    _check(f"{which} root_angle", root_angle, 0.0, g, lo_open=True)
+    _check(f"{which} face_angle", face_angle, g, 0.5 * np.pi - 1e-9)
+    a = (A0 * np.sin(face_angle - g) + face_apex * np.sin(face_angle)) / np.cos(face_angle - g)
+    b = (A0 * np.sin(g - root_angle) - root_apex * np.sin(root_angle)) / np.cos(g - root_angle)
+    _check(f"{which} face_apex (heel addendum {a:.4g} mm)", a, 0.0, 0.5 * A0, lo_open=True)
+    _check(f"{which} root_apex (heel dedendum {b:.4g} mm)", b, 0.0, 0.5 * A0, lo_open=True)
+    da, dd = face_angle - g, g - root_angle
+    new = replace(mb, face_angle=float(face_angle), root_angle=float(root_angle), addendum_angle=float(da),
+                  dedendum_angle=float(dd), addendum=float(a), dedendum=float(b),
+                  mean_addendum=float(a - 0.5 * bw * np.tan(da)), mean_dedendum=float(b - 0.5 * bw * np.tan(dd)),
+                  outside_diameter=float(mb.pitch_diameter + 2 * a * np.cos(g)),
+                  crown_to_apex=float(A0 * np.cos(g) - a * np.sin(g)))
+    members = {"pinion": blank.pinion, "gear": blank.gear, which: new}
+    p, q = members["pinion"], members["gear"]
+    hk = p.addendum + q.addendum
+    ht = max(p.addendum + p.dedendum, q.addendum + q.dedendum)
+    return replace(blank, pinion=p, gear=q, working_depth=float(hk), whole_depth=float(ht), clearance=float(ht - hk))

@@ -9,7 +9,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ltca.geometry.bevel.blank import design_blank
 from ltca.geometry.bevel.design import synthesize_pinion
 from ltca.geometry.bevel.generation import MeshingError, standard_gear_cut
 from ltca.geometry.bevel.tca import RAD_PER_ARCSEC as ARCSEC
@@ -18,7 +17,7 @@ from ltca.geometry.bevel.tca import Assembly, BevelPair, ContactError
 from ..errors import CaseError
 from ..outputs import take_or_solve
 from ..validation import DesignError
-from .case import BevelCase, check_bevel_torques
+from .case import BevelCase, case_blank, check_bevel_torques
 from .loaded import BevelPosition, solve_position
 from .loaded_model import BevelBodies, BevelFidelity, loaded_model, prepare_bodies
 
@@ -30,7 +29,7 @@ FLANK = {"concave": "working", "convex": "coast"}
 def build_pair(case: BevelCase) -> BevelPair:
     """The gear (standard cut) and the pinion synthesised for the case's targets, or the pair cut as the case's
     settings sheets give it."""
-    bl = design_blank(case.basic)
+    bl = case_blank(case)
     if case.cuts:
         return BevelPair(bl, case.cuts["gear"], case.cuts["pinion"])
     gear = standard_gear_cut(bl)
@@ -45,6 +44,12 @@ def synthesis_error(case: BevelCase, exc: Exception, file: str | None = None) ->
     asm = case.assembly or {}
     mounted = [f"assembly.{key}" for name, key in (("E", "E_mm"), ("P", "P_mm"), ("G", "G_mm"),
                                                    ("d_sigma", "sigma_deg")) if asm.get(name, 0.0) != 0.0]
+    if case.cuts:                           # the pair as its settings sheets cut it: no synthesis to blame
+        flank = {"working": "concave", "coast": "convex"}.get(side, "concave")
+        return DesignError(f"spiral bevel TCA failed ({type(exc).__name__}: {str(exc)[:160]})",
+                           (*mounted, f"bevel.settings.pinion.{flank}", "bevel.settings.gear"),
+                           ("smaller assembly errors, or " if mounted else "") + "settings of a finished design "
+                           "(the flanks must touch at an interior point near the mean point)", file=file)
     return DesignError(f"spiral bevel synthesis/TCA failed ({type(exc).__name__}: {str(exc)[:160]})",
                        (*mounted, f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
                         f"bevel.{side}.ellipse_major_mm", "bevel.spiral_angle_deg", "bevel.cutter_radius_mm"),

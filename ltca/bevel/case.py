@@ -1,7 +1,9 @@
 """Spiral bevel case: read and validate a TOML case with a [bevel] table (basic data, flank targets, blank offset).
 
 Instead of the targets a case may give each member's settings sheet per flank, ``[bevel.settings.gear.concave]``
-and so on (keys of :mod:`ltca.geometry.bevel.sheet`): the pair is then cut as given, with no synthesis.
+and so on (keys of :mod:`ltca.geometry.bevel.sheet`): the pair is then cut as given, with no synthesis. A member's
+face and root cones may be given (``[bevel.blank.pinion]``, ``[bevel.blank.gear]``) instead of designed, e.g. for a
+pair from another program (:func:`case_blank`).
 
 Case units: mm, deg, arcsec; converted once here to mm and rad.  Mistakes raise
 :class:`ltca.errors.CaseError` naming the field.
@@ -13,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ltca.geometry.bevel.blank import BevelBasicData, design_blank
+from ltca.geometry.bevel.blank import BevelBasicData, BevelBlank, design_blank, with_cones
 from ltca.geometry.bevel.sheet import member_from_sheet
 from ltca.geometry.bevel.synthesis import FlankTarget
 from ltca.geometry.bevel.tca import RAD_PER_ARCSEC
@@ -22,7 +24,7 @@ from ..errors import CaseError
 from ..validation import DesignError, Int, List, Num, OneOrList, Str, Table, check_kind, check_table
 from .model import BevelMounting, face_limit
 
-__all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data", "check_bevel_torques"]
+__all__ = ["BevelCase", "load_bevel_case", "bevel_case_from_data", "check_bevel_torques", "case_blank"]
 
 # the bevel kind in the one validation layer (ltca.validation); ranges are those the cradle model and the
 # Cao et al. (2008) synthesis are known to handle (outside them the Newton solves of generation and TCA lose the flank)
@@ -67,6 +69,18 @@ def _flank_sheet(blade: str) -> Table:
 
 
 _MEMBER_SHEET = Table({"concave": _flank_sheet("outside"), "convex": _flank_sheet("inside")}, required=True)
+_CONES = Table({
+    "face_angle_deg": Num(0, 90, "deg", required=True, lo_open=True, note="at least the pitch angle",
+                          meaning="face angle (face cone from the axis)"),
+    "root_angle_deg": Num(0, 90, "deg", required=True, lo_open=True, note="at most the pitch angle",
+                          meaning="root angle (root cone from the axis)"),
+    "face_apex_mm": Num(-1e4, 1e4, "mm", required=True,
+                        meaning="face-cone apex beyond the crossing point along the member's axis (ISO 23509 t_zF)"),
+    "root_apex_mm": Num(-1e4, 1e4, "mm", required=True,
+                        meaning="root-cone apex beyond the crossing point along the member's axis (ISO 23509 t_zR)"),
+}, required=False, meaning="the member's face and root cones as given (default: designed from the basic data)")
+_CONE_TABLE = Table({"pinion": _CONES, "gear": _CONES}, default={}, required=False,
+                    meaning="given face and root cones of the members (default: Gleason's design)")
 _SETTINGS = Table({"gear": _MEMBER_SHEET, "pinion": _MEMBER_SHEET}, default={}, required=False)
 _BEVEL = Table({
     "pinion_teeth": Int(6, 100, required=True, meaning="pinion teeth z1"),
@@ -86,6 +100,7 @@ _BEVEL = Table({
     "coast": Table(_FLANK.fields, default={}, required=False,
                    meaning="synthesis target of the coast flank (or give [bevel.settings])"),
     "settings": _SETTINGS,
+    "blank": _CONE_TABLE,
 }, required=True)
 _TORQUE = Num(-1e5, 1e5, "N m", note="not 0")
 _ASSEMBLY = Table({
@@ -129,7 +144,8 @@ class BevelCase:
     ``targets`` maps the pinion side ("concave": working, "convex": coast) to its synthesis target; ``cuts``
     ({"gear", "pinion"} -> MemberCut) holds the pair as its settings sheets cut it, when the case gives them;
     ``assembly`` holds the errors E, P, G (mm) and d_sigma (rad) as keyword arguments of
-    :class:`ltca.geometry.bevel.tca.Assembly`."""
+    :class:`ltca.geometry.bevel.tca.Assembly`; ``cones`` ({member: (face angle, root angle (rad), face apex, root
+    apex (mm))}) the cones given instead of designed (:func:`case_blank`)."""
     name: str
     basic: BevelBasicData
     targets: dict
@@ -142,6 +158,7 @@ class BevelCase:
     fidelity: str
     mounting: BevelMounting
     cuts: dict | None = None
+    cones: dict | None = None
 
 
 def load_bevel_case(case_path: str | Path) -> BevelCase:
@@ -185,6 +202,14 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
     except ValueError as exc:
         raise DesignError(f"bevel blank: {exc}", ("bevel.face_width_mm", "bevel.module_mm", "bevel.pinion_teeth",
                                                   "bevel.gear_teeth", "bevel.cutter_radius_mm"), file=f) from None
+    cones = {m: (np.deg2rad(t["face_angle_deg"]), np.deg2rad(t["root_angle_deg"]), float(t["face_apex_mm"]),
+                 float(t["root_apex_mm"])) for m, t in (b.get("blank") or {}).items() if t}
+    for m, cone in cones.items():
+        try:
+            blank = with_cones(blank, m, *cone)
+        except ValueError as exc:
+            raise CaseError(f"bevel.blank.{m}", "cones", f"cones of a {m} blank with its pitch angle "
+                            f"{np.rad2deg(blank.member(m).pitch_angle):.4f} deg ({exc})", f) from None
     _check_pitch_angles(b, blank, f)
     mounting = _mounting(c.get("mounting") or {}, blank, f)
     cuts = _cuts(b["settings"], basic, f) if given else None
@@ -198,7 +223,16 @@ def bevel_case_from_data(data: dict, f: str | None = None, stem: str = "bevel") 
                               G=float(asm.get("G_mm", 0.0)), d_sigma=float(np.deg2rad(asm.get("sigma_deg", 0.0)))),
                 young=float(mat.get("youngs_modulus_mpa", 206000.0)), poisson=float(mat.get("poisson_ratio", 0.3)),
                 positions=int(an.get("positions", 21)), fidelity=str(an.get("fidelity", "default")),
-                mounting=mounting)
+                mounting=mounting, cones=cones or None)
+
+
+def case_blank(case: BevelCase) -> BevelBlank:
+    """The case's blank: designed from its basic data (:func:`ltca.geometry.bevel.blank.design_blank`), with the
+    members' face and root cones replaced where ``[bevel.blank]`` gives them."""
+    blank = design_blank(case.basic)
+    for m, c in (case.cones or {}).items():
+        blank = with_cones(blank, m, *c)
+    return blank
 
 
 def _cuts(sheets: dict, basic: BevelBasicData, f: str | None) -> dict:

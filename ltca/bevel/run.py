@@ -7,7 +7,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ltca.geometry.bevel.blank import design_blank
 from ltca.geometry.bevel.design import cycle_metrics, synthesize_pinion
 from ltca.geometry.bevel.generation import MeshingError, generate_member, standard_gear_cut, surface_state
 from ltca.geometry.bevel.machine import MemberCut
@@ -17,7 +16,7 @@ from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, Contact
 from ltca.geometry.bevel.undercut import undercut_check
 
 from .analysis import synthesis_error
-from .case import load_bevel_case
+from .case import case_blank, load_bevel_case
 
 __all__ = ["run_bevel_tca", "plot_bevel", "bevel_benchmark", "settings_sheet_toml"]
 
@@ -99,7 +98,7 @@ def bevel_tca_summary(case, file: str | None = None) -> tuple[dict, BevelPair, d
 
 
 def _tca(case) -> tuple[dict, BevelPair, dict]:
-    bl = design_blank(case.basic)
+    bl = case_blank(case)
     if case.cuts:
         gear, pin, infos = case.cuts["gear"], case.cuts["pinion"], None
     else:
@@ -241,7 +240,7 @@ def bevel_benchmark(repeat: int = 3, case_path: str | None = None) -> dict:
     from ..shipped import case_path as shipped_case
     path = str(shipped_case(case_path or "spiral_bevel_cao2008"))
     case = load_bevel_case(path)
-    bl = design_blank(case.basic)
+    bl = case_blank(case)
     gear = standard_gear_cut(bl)
     times: dict[str, list] = {k: [] for k in ("generation", "tca", "separation", "synthesis")}
     pin = None

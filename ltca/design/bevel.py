@@ -26,7 +26,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ltca.geometry.bevel.blank import design_blank
 from ltca.geometry.bevel.design import control_point_design
 from ltca.geometry.bevel.generation import standard_gear_cut
 from ltca.geometry.bevel.machine import MemberCut
@@ -35,7 +34,7 @@ from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair
 from ltca.geometry.bevel.undercut import undercut_check
 
 from ..bevel.analysis import cycle_positions
-from ..bevel.case import bevel_case_from_data
+from ..bevel.case import bevel_case_from_data, case_blank
 from ..bevel.loaded import solve_position
 from ..bevel.loaded_model import BevelFidelity, loaded_model, prepare_bodies
 from ..errors import CaseError
@@ -83,7 +82,7 @@ class BevelBackend:
                 raise CaseError(f"design.variables.{v.name}", f"[{v.lower:g}, {v.upper:g}]", f"a variable of a "
                                 f"loaded flank: no torque of [load] torque_nm loads the {flank} flank (a "
                                 f"{'positive' if flank == 'working' else 'negative'} pinion torque)", file)
-        self.blank = design_blank(case.basic)
+        self.blank = case_blank(case)
         req = spec.constraints.edge_margin_mm
         if req is not None and req >= 0.25 * self.blank.face_width:
             raise CaseError("design.constraints.edge_margin_mm", req, f"a margin below a quarter of the face width "
