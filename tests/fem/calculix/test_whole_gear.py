@@ -28,6 +28,7 @@ def _coarse(model, member):
                                         loaded_teeth=(0,), h_flank=2.0, h_tooth=3.0, h_body=6.0, ds=0.8))
 
 
+@pytest.mark.heavy
 def test_full_gear_has_every_tooth_bore_and_web(thin_rim_model):
     m = _coarse(thin_rim_model, "pinion")
     z = thin_rim_model.pinion.z
@@ -49,6 +50,7 @@ def test_full_gear_has_every_tooth_bore_and_web(thin_rim_model):
     assert vol < disc + np.pi * (thin_rim_model.pinion.r_tip ** 2 - r_rim ** 2) * b
 
 
+@pytest.mark.heavy
 def test_whole_deck_writes(thin_rim_model, tmp_path):
     from ltca.fem.calculix.deck import CcxDeck, ContactPairSpec, DeckBody, write_deck
     from ltca.geometry.pair import rotation_z
@@ -73,6 +75,7 @@ def test_full_gear_is_independent_of_our_body():
         assert not any("gear_body" in n or "compliance" in n for n in names), (path, names)
 
 
+@pytest.mark.heavy
 def test_helical_full_gear_is_lofted_on_the_helicoid():
     """Helical C14's pinion (beta 20 deg, b 40 mm): every tooth labelled, the flank vertices of tooth 0 within
     1 um of the transverse outline turned by tan(beta) / r z (measured 0.3 um), over the whole face."""
@@ -111,6 +114,7 @@ def test_read_nodal_stress_takes_the_last_block_in_voigt_order(tmp_path):
     assert np.allclose(sig[0], [1, 2, 3, 5, 6, 4]) and np.allclose(sig[1], [-1e3, 0, 0, 0, 250.5, 0])
 
 
+@pytest.mark.heavy
 def test_fillet_stress_reads_the_tension_fillets_as_ours(tmp_path):
     """0.05 mm inside the named fillets, |z| <= 0.45 b, largest principal stress, and where; the loaded
     teeth's tension-side fillets are meshed at h_fillet, the other side left."""

@@ -9,6 +9,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+pytestmark = pytest.mark.heavy       # whole-gear solids of the CalculiX cross-check (maintainer tooling)
+
 
 @pytest.mark.parametrize("member,anchor", [("pinion", "concave"), ("gear", "convex")])
 def test_tooth_lies_against_the_anchor_normal(bevel_pair, member, anchor):

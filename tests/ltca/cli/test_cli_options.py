@@ -72,6 +72,7 @@ def test_study_file_fields(tmp_path, capsys, text, field):
     assert len(err) == 1 and f"'{field}'" in err[0], err
 
 
+@pytest.mark.heavy
 def test_impossible_study_variant_one_line_no_dask_noise(tmp_path):
     """A variant the geometry cannot make (a pinion profile shift whose tips reach the gear root at the case's
     centre distance): exit 2 and only the one line, no Dask worker traceback or dashboard warning."""

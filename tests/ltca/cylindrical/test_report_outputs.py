@@ -136,6 +136,7 @@ def test_paraview_series(flagship):
     assert p_flank == pytest.approx(1386.7, rel=0.03)                  # guarded: the pitch-point peak of FZG C14
 
 
+@pytest.mark.heavy
 def test_pattern_not_striped_at_defaults_but_striped_undersampled(flagship, fzg_lm):
     """Striping index (ltca.cylindrical.pattern): the flagship defaults are smooth (index well below the limit); 8
     positions per cycle leave columns that no contact line crossed and fail the same criterion."""

@@ -120,6 +120,7 @@ def test_one_compliance_per_geometry(sweep):
         assert (out / name).is_file()
 
 
+@pytest.mark.heavy
 def test_each_variant_equals_a_standalone_run(sweep, tmp_path):
     """The misaligned variant through ``ltca run`` (its own compliance) equals the study's points to 1e-9."""
     from ltca.study.spec import to_toml
