@@ -144,6 +144,11 @@ class BodyCompliance:
                              shape=(n, len(loaded) * ns * nz))
 
 
+#: facet quadrature levels of the cylindrical bodies' patch loads (:func:`flank_compliance`): a patch spans many flank
+#: facets (0.75 of the grid spacing against elements of 0.3 module), whose 7 points each lie closer than the read depth
+PATCH_REFINE = 0
+
+
 def principal_max(sig: np.ndarray) -> np.ndarray:
     """Largest principal stress of Voigt stresses (..., 6) ordered xx, yy, zz, yz, xz, xy."""
     T = np.stack([np.stack([sig[..., 0], sig[..., 5], sig[..., 4]], -1),
@@ -232,13 +237,14 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     root_tooth = np.concatenate([np.full(len(base), k) for k in spec.loaded]) if roots else np.zeros(0, int)
     spacing = max(np.diff(s_grid).max(), np.diff(z_grid).max())
     return flank_compliance(spec, mesh, "rim" if profile.internal else "bore", flanks, s_grid, z_grid, depth,
-                            spacing, names, R, root_tooth, {"mesh": t_mesh}, say, recovery="nodal")
+                            spacing, names, R, root_tooth, {"mesh": t_mesh}, say, recovery="nodal",
+                            refine=PATCH_REFINE)
 
 
 def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray, z_grid: np.ndarray,
                      depth: np.ndarray, spacing: float, load_groups: list[str], root_points: np.ndarray,
                      root_tooth: np.ndarray, timings: dict | None = None, progress=None,
-                     recovery: str = "element", pitch: float | None = None) -> BodyCompliance:
+                     recovery: str = "element", pitch: float | None = None, refine: int = 1) -> BodyCompliance:
     """The compliance of any meshed gear body on its loaded flank grids: the one path for every gear type.
 
     Parameters
@@ -271,6 +277,9 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
         turns tooth k onto tooth k + 1: then only the centre loaded tooth is loaded and its neighbours are read
         (:mod:`ltca.fem.periodic`); the flanks and root points of the loaded teeth must be turned copies too.
         None: every loaded tooth is loaded.
+    refine : int
+        Subdivision levels of the facet quadrature of the patch loads and of their half-space part
+        (:func:`ltca.fem.loads.patch_quadrature`: 7 points a facet at 0, 28 at 1).
     """
     say = progress or (lambda msg: None)
     t = dict(timings or {})
@@ -309,8 +318,8 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
     Y = np.concatenate([Xr - d_pt * Nr, Xr - 2 * d_pt * Nr]) if near else Xr
     tri = np.concatenate([mesh.facets[g] for g in load_groups if g in mesh.facets])
     ds = spacing
-    quad = patch_quadrature(mesh.nodes, tri, X, 0.75 * ds)
-    F = patch_loads(mesh.nodes, tri, X, -Nn, 0.75 * ds, quadrature=quad)
+    quad = patch_quadrature(mesh.nodes, tri, X, 0.75 * ds, refine=refine)
+    F = patch_loads(mesh.nodes, tri, X, -Nn, 0.75 * ds, refine=refine, quadrature=quad)
     Pm = interpolation_matrix(mesh.nodes, mesh.tets, Y)
     NN = np.concatenate([Nr, Nr]) if near else Nr
     O = sp.csr_matrix((-NN.ravel(), (np.repeat(np.arange(len(Y)), 3), np.arange(3 * len(Y)))),
