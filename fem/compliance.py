@@ -144,8 +144,8 @@ class BodyCompliance:
                              shape=(n, len(loaded) * ns * nz))
 
 
-#: facet quadrature levels of the cylindrical bodies' patch loads (:func:`flank_compliance`): a patch spans many flank
-#: facets (0.75 of the grid spacing against elements of 0.3 module), whose 7 points each lie closer than the read depth
+#: facet quadrature levels of the cylindrical bodies' patch loads (:func:`flank_compliance`): a patch reaches 0.75 of
+#: the grid spacing, several flank elements, so the 7-point rule per facet already puts hundreds of points on it
 PATCH_REFINE = 0
 
 
