@@ -34,7 +34,9 @@ class BevelComplianceSpec:
     depth : read depth d of the regular part (also 2d), mm, capped at 15 % of the local tooth thickness; 0: no
     near field;  rim_depth : blank under the root cone, mm (without a support);  support : the mounting in
     service, ``("seat", rho)`` or ``("face", Z)``;  divisions : mesh divisions; both of
-    :class:`ltca.fem.solids.bevel_body.BevelBodySpec`;  root_points : (along the fillet, along the face).
+    :class:`ltca.fem.solids.bevel_body.BevelBodySpec`;  root_points : (along the fillet, along the face);
+    periodic : load the centre loaded tooth only and read its neighbours (:mod:`ltca.fem.periodic`: the mapped body's
+    teeth are turned copies on a body of revolution), else load every loaded tooth.
     """
     side: str
     loaded: tuple[int, ...]
@@ -47,6 +49,7 @@ class BevelComplianceSpec:
     divisions: tuple[int, int, int, int, int, int] = (16, 8, 6, 4, 4, 24)
     root_points: tuple[int, int] = (4, 7)
     support: tuple[str, float] | None = None
+    periodic: bool = True
 
     def __post_init__(self) -> None:
         if self.side not in ("concave", "convex"):
@@ -130,4 +133,4 @@ def bevel_compliance(concave: Flank, convex: Flank, z: int, root_offset: float, 
     root_tooth = np.repeat(np.asarray(spec.loaded), len(base))
     names = [f"flank_{k}_{spec.side}" for k in spec.loaded]
     return flank_compliance(spec, mesh, "bore", flanks, t_grid, L_grid, depth, spacing, names, R, root_tooth,
-                            {"mesh": t_mesh}, say)
+                            {"mesh": t_mesh}, say, pitch=pitch if spec.periodic else None)

@@ -35,6 +35,7 @@ from ltca.geometry.cylindrical import arc_length, helical_flank
 from .elastic import assemble_stiffness
 from .fillet import fillet_points, fillet_size
 from .loads import patch_loads, patch_quadrature
+from .periodic import periodic_offsets, turn_z, voigt_turn
 from .readout import interpolation_matrix, nodal_stress, stress_matrix
 from .solids import GearBodySpec, build_gear_body
 from .solver import factorize
@@ -143,6 +144,11 @@ class BodyCompliance:
                              shape=(n, len(loaded) * ns * nz))
 
 
+#: facet quadrature levels of the cylindrical bodies' patch loads (:func:`flank_compliance`): a patch reaches 0.75 of
+#: the grid spacing, several flank elements, so the 7-point rule per facet already puts hundreds of points on it
+PATCH_REFINE = 0
+
+
 def principal_max(sig: np.ndarray) -> np.ndarray:
     """Largest principal stress of Voigt stresses (..., 6) ordered xx, yy, zz, yz, xz, xy."""
     T = np.stack([np.stack([sig[..., 0], sig[..., 5], sig[..., 4]], -1),
@@ -231,13 +237,14 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     root_tooth = np.concatenate([np.full(len(base), k) for k in spec.loaded]) if roots else np.zeros(0, int)
     spacing = max(np.diff(s_grid).max(), np.diff(z_grid).max())
     return flank_compliance(spec, mesh, "rim" if profile.internal else "bore", flanks, s_grid, z_grid, depth,
-                            spacing, names, R, root_tooth, {"mesh": t_mesh}, say, recovery="nodal")
+                            spacing, names, R, root_tooth, {"mesh": t_mesh}, say, recovery="nodal",
+                            refine=PATCH_REFINE)
 
 
 def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray, z_grid: np.ndarray,
                      depth: np.ndarray, spacing: float, load_groups: list[str], root_points: np.ndarray,
                      root_tooth: np.ndarray, timings: dict | None = None, progress=None,
-                     recovery: str = "element") -> BodyCompliance:
+                     recovery: str = "element", pitch: float | None = None, refine: int = 1) -> BodyCompliance:
     """The compliance of any meshed gear body on its loaded flank grids: the one path for every gear type.
 
     Parameters
@@ -265,6 +272,14 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
     recovery : {"element", "nodal"}
         Stress at the read-out points: of the element containing each, or averaged at the nodes as CalculiX's
         (:func:`ltca.fem.readout.stress_matrix`). The cylindrical bodies use "nodal".
+    pitch : float, optional
+        Where the fine teeth are turned copies of each other on an axisymmetric body, the angle (rad, about +z) that
+        turns tooth k onto tooth k + 1: then only the centre loaded tooth is loaded and its neighbours are read
+        (:mod:`ltca.fem.periodic`); the flanks and root points of the loaded teeth must be turned copies too.
+        None: every loaded tooth is loaded.
+    refine : int
+        Subdivision levels of the facet quadrature of the patch loads and of their half-space part
+        (:func:`ltca.fem.loads.patch_quadrature`: 7 points a facet at 0, 28 at 1).
     """
     say = progress or (lambda msg: None)
     t = dict(timings or {})
@@ -281,22 +296,34 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
     # ---- the flank grid, its depth points and the patch loads
     t0 = time.perf_counter()
     nz = len(z_grid)
+    m = len(s_grid) * nz
     X = np.concatenate([f.points.reshape(-1, 3) for f in flanks])
     Nn = np.concatenate([f.normals.reshape(-1, 3) for f in flanks])
-    d_pt = np.tile(np.repeat(depth, nz), len(spec.loaded))[:, None]
+    n = len(X)
+    loaded = [int(k) for k in spec.loaded]
+    per = None if pitch is None else periodic_offsets(loaded, spec.teeth)
+    if per is None:                        # load every loaded tooth, read them
+        Xr, Nr, R, cols = X, Nn, root_points, slice(None)
+    else:                                  # load the centre tooth, read it and its neighbours
+        centre, offsets = per
+        ic = loaded.index(centre)
+        Xc, Nc = X[ic * m:(ic + 1) * m], Nn[ic * m:(ic + 1) * m]
+        base = root_points[np.asarray(root_tooth) == centre]
+        Xr, Nr, R = (np.concatenate([turn_z(a, d * pitch) for d in offsets]) for a in (Xc, Nc, base))
+        cols = slice(ic * m, (ic + 1) * m)
+    n_read = len(Xr)
+    d_pt = np.tile(np.repeat(depth, nz), n_read // m)[:, None]
     near = spec.depth > 0
     # reads at d and 2d below the flank (at the flank itself without the near field)
-    Y = np.concatenate([X - d_pt * Nn, X - 2 * d_pt * Nn]) if near else X
-    tri = np.concatenate([mesh.facets[n] for n in load_groups if n in mesh.facets])
+    Y = np.concatenate([Xr - d_pt * Nr, Xr - 2 * d_pt * Nr]) if near else Xr
+    tri = np.concatenate([mesh.facets[g] for g in load_groups if g in mesh.facets])
     ds = spacing
-    quad = patch_quadrature(mesh.nodes, tri, X, 0.75 * ds)
-    F = patch_loads(mesh.nodes, tri, X, -Nn, 0.75 * ds, quadrature=quad)
+    quad = patch_quadrature(mesh.nodes, tri, X, 0.75 * ds, refine=refine)
+    F = patch_loads(mesh.nodes, tri, X, -Nn, 0.75 * ds, refine=refine, quadrature=quad)
     Pm = interpolation_matrix(mesh.nodes, mesh.tets, Y)
-    n = len(X)
-    NN = np.concatenate([Nn, Nn]) if near else Nn
+    NN = np.concatenate([Nr, Nr]) if near else Nr
     O = sp.csr_matrix((-NN.ravel(), (np.repeat(np.arange(len(Y)), 3), np.arange(3 * len(Y)))),
                       shape=(len(Y), 3 * len(Y))) @ Pm
-    R = root_points
     P = None
     if not len(R):
         S = sp.csr_matrix((0, K.shape[0]))
@@ -306,9 +333,9 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
         S = stress_matrix(mesh.nodes, mesh.tets, spec.young, spec.poisson, R)
     t["setup"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    out = fact.solve(F, observe=sp.vstack([O, S]).tocsr())
+    out = fact.solve(F[:, cols], observe=sp.vstack([O, S]).tocsr())
     t["solves"] = time.perf_counter() - t0
-    say(f"{n} unit loads solved ({t['solves']:.1f} s)")
+    say(f"{out.shape[1]} unit loads solved ({t['solves']:.1f} s)")
     if near:
         # the regular part: FE minus the half-space response of the same patch loads at the same points,
         # read at d and 2d and extrapolated linearly to the flank (the regular part varies linearly with
@@ -318,16 +345,61 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
         t0 = time.perf_counter()
         regular = []
         for i in (0, 1):
-            H = _patch_halfspace(quad, Y[i * n:(i + 1) * n], Nn, len(spec.loaded), spec.young, spec.poisson)
-            regular.append(out[i * n:(i + 1) * n] - H)
+            reads = out[i * n_read:(i + 1) * n_read]
+            if per is None:
+                H = _patch_halfspace(quad, Y[i * n:(i + 1) * n], Nn, len(loaded), spec.young, spec.poisson)
+                regular.append(reads - H)
+            else:                          # the same-flank pairs: the centre tooth read at offset 0
+                j0 = int(np.flatnonzero(offsets == 0)[0]) * m
+                H = _patch_halfspace(_tooth_quadrature(quad, ic, m), Y[i * n_read + j0:i * n_read + j0 + m], Nc, 1,
+                                     spec.young, spec.poisson)
+                reads = reads.copy()
+                reads[j0:j0 + m] -= H
+                regular.append(reads)
         C = 2.0 * regular[0] - regular[1]
         t["half-space"] = time.perf_counter() - t0
     else:
-        C = out[:n]
+        C = out[:n_read]
+    stress = out[len(Y):] if P is None else P @ out[len(Y):]
+    stress = stress.reshape(len(R), 6, out.shape[1])
+    if per is not None:
+        C, stress = _unfold(C, stress, loaded, centre, offsets, pitch, m)
+        R = root_points
     # Maxwell-Betti reciprocity holds between loads and reads at the same points; the reads sit below the
     # loads, which breaks symmetry only at the level of the discretisation error: keep the symmetric part
     # so that the contact matrix stays symmetric positive definite.
     C = 0.5 * (C + C.T)
-    out = out[len(Y):] if P is None else P @ out[len(Y):]
-    return BodyCompliance(spec, s_grid, z_grid, C, depth, R, np.asarray(root_tooth, int), out.reshape(len(R), 6, n),
+    return BodyCompliance(spec, s_grid, z_grid, C, depth, R, np.asarray(root_tooth, int), stress,
                           K.shape[0], mesh, fact, F, t)
+
+
+def _tooth_quadrature(quadrature, tooth: int, m: int):
+    """The patch quadrature (:func:`ltca.fem.loads.patch_quadrature`) of the patches of one tooth's m grid nodes,
+    renumbered from 0."""
+    patch, q, pts, w = quadrature
+    hit = (patch >= tooth * m) & (patch < (tooth + 1) * m)
+    return patch[hit] - tooth * m, q[hit], pts[hit], w[hit]
+
+
+def _unfold(C: np.ndarray, stress: np.ndarray, loaded: list[int], centre: int, offsets: np.ndarray, pitch: float,
+            m: int) -> tuple[np.ndarray, np.ndarray]:
+    """Every loaded tooth's block from the centre tooth's loads (:mod:`ltca.fem.periodic`).
+
+    ``C`` (n_off m, m) and ``stress`` (n_off r, 6, m): reads at the teeth ``centre + offsets`` under the centre
+    tooth's loads. Returns the (n m, n m) compliance and the (n r, 6, n m) root stresses of the n loaded teeth:
+    the response at tooth a to a load on tooth b is the centre tooth's at tooth ``centre + a - b``, its stresses
+    turned by ``(b - centre) pitch``."""
+    nl = len(loaded)
+    at = {int(d): i for i, d in enumerate(offsets)}
+    Cd = C.reshape(len(offsets), m, m)
+    r = stress.shape[0] // len(offsets)
+    Sd = stress.reshape(len(offsets), r, 6, m)
+    C_all = np.empty((nl * m, nl * m))
+    S_all = np.empty((nl * r, 6, nl * m))
+    for ib, b in enumerate(loaded):
+        T = voigt_turn((b - centre) * pitch)
+        for ia, a in enumerate(loaded):
+            k = at[a - b]
+            C_all[ia * m:(ia + 1) * m, ib * m:(ib + 1) * m] = Cd[k]
+            S_all[ia * r:(ia + 1) * r, :, ib * m:(ib + 1) * m] = np.einsum("uv,pvj->puj", T, Sd[k])
+    return C_all, S_all
