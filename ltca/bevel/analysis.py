@@ -19,6 +19,7 @@ from ..errors import CaseError
 from ..outputs import take_or_solve
 from ..validation import DesignError
 from .case import BevelCase, check_bevel_torques
+from .limits import BevelDesignLimit, working_values
 from .loaded import BevelPosition, solve_position
 from .loaded_model import BevelBodies, BevelFidelity, loaded_model, prepare_bodies
 
@@ -40,7 +41,16 @@ def build_pair(case: BevelCase) -> BevelPair:
 
 def synthesis_error(case: BevelCase, exc: Exception, file: str | None = None) -> DesignError:
     """The user's design (targets, blank, cutter) has no solution in the cradle model: the error (exit 2) that
-    names the inputs, the same for ``ltca tca`` and ``ltca run``."""
+    names the inputs, the same for ``ltca tca`` and ``ltca run``.
+
+    For a case with synthesis targets, :func:`ltca.bevel.limits.working_values` searches the limiting field and a
+    value of it that works (a :class:`ltca.bevel.limits.BevelDesignLimit` naming both); where the pair is made on
+    the ideal mounting, or the search finds no value within its budget, the error names the inputs that drive it."""
+    searched = None
+    if not case.cuts and case.targets:
+        searched = working_values(case)
+        if searched.found:
+            return BevelDesignLimit(searched.failure, searched.found, file)
     side = "working" if "concave" in str(exc) else "coast" if "convex" in str(exc) else "working/coast"
     asm = case.assembly or {}
     mounted = [f"assembly.{key}" for name, key in (("E", "E_mm"), ("P", "P_mm"), ("G", "G_mm"),
@@ -49,7 +59,11 @@ def synthesis_error(case: BevelCase, exc: Exception, file: str | None = None) ->
                        (*mounted, f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
                         f"bevel.{side}.ellipse_major_mm", "bevel.spiral_angle_deg", "bevel.cutter_radius_mm"),
                        ("smaller assembly errors, or " if mounted else "") +
-                       "move the targets towards the shipped case's values", file=file)
+                       ("move the targets towards the shipped case's values" if searched is None or
+                        searched.failure is None else
+                        f"no single change of the failing flank's path angle, ellipse axis or TE magnitude, nor a "
+                        f"cutter radius of 0.6 to 1.2 mean cone distances, made the pinion in {searched.trials} "
+                        "trials: change several targets at once, towards the shipped case's values"), file=file)
 
 
 def cycle_positions(n: int, z1: int) -> np.ndarray:
