@@ -13,7 +13,7 @@ traceback or a warning reached the console.  "Agree": both succeed, or both exit
 
 A pair that exits 2 is run again with the value its message names (:func:`suggestions`: the value a bevel design
 limit found to work, the largest shaft angle, or the nearest end of a field's range) written into its case; a
-message of that run naming another value is applied in turn, up to ``--rounds`` (2) rounds.  "Suggested value
+message of that run naming another value is applied in turn, up to ``--rounds`` (3) rounds.  "Suggested value
 works": that case runs with both commands.
 
     nice -n 5 python3 tools/bevel_sweep.py --pairs 32 --out /tmp/bevel_sweep
@@ -151,7 +151,7 @@ def _bad(r: dict) -> bool:
     return bool(r["traceback"] or r["warning"])
 
 
-def sweep(n: int, out: Path, timeout: float = 900.0, progress=print, only=None, rounds: int = 2) -> list[dict]:
+def sweep(n: int, out: Path, timeout: float = 900.0, progress=print, only=None, rounds: int = 3) -> list[dict]:
     """Run the first ``n`` pairs of :func:`grid` (or those of them whose index is in ``only``) into ``out``; a pair
     that exits 2 again with the values its messages name, up to ``rounds`` rounds."""
     out.mkdir(parents=True, exist_ok=True)
@@ -209,8 +209,8 @@ def _write(rows: list[dict], out: Path) -> None:
               for r in rows)
     lines = [(f"pairs {len(rows)}: run {ok}, exit 2 naming a field {named} (and a value {valued}), disagree "
               f"{sum(not r['agree'] for r in rows)}, traceback or warning {bad} (also in the re-runs)"),
-             f"suggested value works: {len(works)} of {valued} (with the first suggestion {first}, with a second "
-             f"{len(works) - first})", "",
+             f"suggested value works: {len(works)} of {valued} (with the first suggestion {first}, "
+             f"{len(works) - first} after more rounds)", "",
              "| # | z1/z2 | spiral deg | shaft deg | rc/Am | tca | run | field / message | suggested | works |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -225,7 +225,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--pairs", type=int, default=32)
     ap.add_argument("--out", default="bevel_sweep")
     ap.add_argument("--only", type=int, nargs="*", help="run only these pair indices")
-    ap.add_argument("--rounds", type=int, default=2, help="re-runs with the values the messages name")
+    ap.add_argument("--rounds", type=int, default=3, help="re-runs with the values the messages name")
     a = ap.parse_args(argv)
     rows = sweep(a.pairs, Path(a.out), only=a.only, rounds=a.rounds)
     print((Path(a.out) / "sweep.md").read_text())

@@ -18,6 +18,7 @@ from __future__ import annotations
 import logging
 import time
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -162,7 +163,7 @@ def _search(works, x0: float, anchors: list[float], digits: int, log_scale: bool
     return None
 
 
-def _target_plans(case, side: str) -> list[tuple[str, str, float, list[float], int, bool, callable]]:
+def _target_plans(case, side: str) -> list[tuple[str, str, float, list[float], int, bool, Callable]]:
     """(field, unit, user's value, anchors, digits, log scale, target with the field changed) per target field."""
     tg = case.targets[side]
     label = LABEL[side]
