@@ -194,15 +194,16 @@ def _flank_value(case, blank, gear, side: str, failure: str, budget: _Budget) ->
                 if not budget.take():
                     return None
                 fail, pair = flank_failure(blank, gear, side, target(v), case.blank_offset, _TRIAL_ITER)
-                if pair is not None:
-                    fail = _separation_failure(pair, side)
                 log.debug("%s = %g: %s", field, v, fail or "works")
-                seen[v] = pair if fail is None else None
+                seen[v] = pair
             return seen[v] is not None
 
         found = _search(works, x0, anchors, digits, log_scale)
         if found is not None:
-            return WorkingValue(field, x0, found, unit, failure)
+            fail = _separation_failure(seen[found], side)
+            if fail is None:
+                return WorkingValue(field, x0, found, unit, failure)
+            log.debug("%s = %g: %s", field, found, fail)
         if budget.used >= budget.trials:
             return None
     return None
