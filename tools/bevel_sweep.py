@@ -134,7 +134,7 @@ def _run(args: list[str], timeout: float) -> dict:
     lines = [ln for ln in err.splitlines() if ln.strip()]
     msg = next((ln for ln in lines if ln.startswith("ltca ")), lines[-1] if lines else "")
     m = FIELD.search(msg)
-    return {"status": status, "message": msg[:300], "field": m.group(1) if m else "",
+    return {"status": status, "message": msg[:2000], "field": m.group(1) if m else "",
             "traceback": "Traceback" in err, "warning": bool(re.search(r"Warning\b|warnings.warn", err)),
             "seconds": round(time.perf_counter() - t0, 1)}
 
