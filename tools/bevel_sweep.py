@@ -139,9 +139,12 @@ def _run(args: list[str], timeout: float) -> dict:
             "seconds": round(time.perf_counter() - t0, 1)}
 
 
-def _both(case: Path, out: Path, tag: str, timeout: float) -> tuple[dict, dict]:
-    """``ltca tca`` and ``ltca run`` (coarse, 5 positions) of one case file."""
+def _both(case: Path, out: Path, tag: str, timeout: float, skip_run_if=None) -> tuple[dict, dict]:
+    """``ltca tca`` and ``ltca run`` (coarse, 5 positions) of one case file; ``run`` is left out (its status None)
+    where ``skip_run_if(tca result)`` is true."""
     tca = _run(["tca", str(case), "--out", str(out / f"tca_{tag}")], timeout)
+    if skip_run_if is not None and skip_run_if(tca):
+        return tca, {"status": None, "message": "", "field": "", "traceback": False, "warning": False, "seconds": 0.0}
     run = _run(["run", str(case), "--out", str(out / f"run_{tag}"), "--fidelity", "coarse", "--positions", "5",
                 "--quiet"], timeout)
     return tca, run
@@ -173,13 +176,16 @@ def sweep(n: int, out: Path, timeout: float = 900.0, progress=print, only=None, 
         t2, r2 = tca, run
         for k in range(1, rounds + 1):
             new = suggestions(t2["message"] if t2["status"] == 2 else r2["message"])
-            if not new or t2["status"] not in (0, 2) or r2["status"] not in (0, 2) or \
+            if not new or t2["status"] not in (0, 2) or r2["status"] not in (0, 2, None) or \
                     (t2["status"] == 0 and r2["status"] == 0):
                 break
             applied.update(new)
             sug = out / f"pair_{g['i']:02d}_suggested_{k}.toml"
             sug.write_text(with_values(text, applied))
-            t2, r2 = _both(sug, out, f"{g['i']:02d}_s{k}", timeout)
+            # a re-run whose tca names a further value goes to the next round without its run (both commands give
+            # the same message: the first pass shows it)
+            t2, r2 = _both(sug, out, f"{g['i']:02d}_s{k}", timeout,
+                           lambda t, k=k: k < rounds and t["status"] == 2 and bool(suggestions(t["message"])))
             row.update(suggested=", ".join(f"{f} = {v:g}" for f, v in applied.items()), suggested_rounds=k,
                        suggested_works=t2["status"] == 0 and r2["status"] == 0,
                        suggested_message=(t2["message"] or r2["message"])[:300],
