@@ -154,9 +154,11 @@ def _bad(r: dict) -> bool:
     return bool(r["traceback"] or r["warning"])
 
 
-def sweep(n: int, out: Path, timeout: float = 900.0, progress=print, only=None, rounds: int = 3) -> list[dict]:
+def sweep(n: int, out: Path, timeout: float = 900.0, progress=print, only=None, rounds: int = 3,
+          suggested_run: bool = True) -> list[dict]:
     """Run the first ``n`` pairs of :func:`grid` (or those of them whose index is in ``only``) into ``out``; a pair
-    that exits 2 again with the values its messages name, up to ``rounds`` rounds."""
+    that exits 2 again with the values its messages name, up to ``rounds`` rounds (``suggested_run`` False: those
+    re-runs with ``ltca tca`` alone, the synthesis and unloaded TCA; their run status is then None)."""
     out.mkdir(parents=True, exist_ok=True)
     rows = []
     for g in grid(n):
@@ -170,7 +172,7 @@ def sweep(n: int, out: Path, timeout: float = 900.0, progress=print, only=None, 
         row.update({f"tca_{k}": v for k, v in tca.items()})
         row.update({f"run_{k}": v for k, v in run.items()})
         row["agree"] = (tca["status"] == 0 and run["status"] == 0) or (tca["status"] == 2 and run["status"] == 2)
-        row.update(suggested="", suggested_rounds=0, suggested_works="", suggested_message="",
+        row.update(suggested="", suggested_rounds=0, suggested_works="", suggested_run="", suggested_message="",
                    suggested_bad=False)
         applied: dict[str, float] = {}
         t2, r2 = tca, run
@@ -185,9 +187,11 @@ def sweep(n: int, out: Path, timeout: float = 900.0, progress=print, only=None, 
             # a re-run whose tca names a further value goes to the next round without its run (both commands give
             # the same message: the first pass shows it)
             t2, r2 = _both(sug, out, f"{g['i']:02d}_s{k}", timeout,
-                           lambda t, k=k: k < rounds and t["status"] == 2 and bool(suggestions(t["message"])))
+                           lambda t, k=k: not suggested_run or (k < rounds and t["status"] == 2
+                                                                 and bool(suggestions(t["message"]))))
             row.update(suggested=", ".join(f"{f} = {v:g}" for f, v in applied.items()), suggested_rounds=k,
-                       suggested_works=t2["status"] == 0 and r2["status"] == 0,
+                       suggested_works=t2["status"] == 0 and r2["status"] in (0, None),
+                       suggested_run=r2["status"],
                        suggested_message=(t2["message"] or r2["message"])[:300],
                        suggested_bad=row["suggested_bad"] or _bad(t2) or _bad(r2))
         rows.append(row)
@@ -217,12 +221,13 @@ def _write(rows: list[dict], out: Path) -> None:
               f"{sum(not r['agree'] for r in rows)}, traceback or warning {bad} (also in the re-runs)"),
              f"suggested value works: {len(works)} of {valued} (with the first suggestion {first}, "
              f"{len(works) - first} after more rounds)", "",
-             "| # | z1/z2 | spiral deg | shaft deg | rc/Am | tca | run | field / message | suggested | works |",
+             "| # | z1/z2 | spiral deg | shaft deg | rc/Am | tca | run | field / message | suggested | works (tca, run) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['i']} | {r['z1']}/{r['z2']} | {r['beta']:.1f} | {r['sigma']:.1f} | {r['cutter_factor']:.2f} | "
                      f"{r['tca_status']} | {r['run_status']} | {(r['tca_message'] or r['run_message'])[:400]} | "
-                     f"{r['suggested']} | {'' if not r['suggested'] else 'yes' if r['suggested_works'] else 'no'} |")
+                     f"{r['suggested']} | {'' if not r['suggested'] else 'yes' if r['suggested_works'] else 'no'}"
+                     f"{'' if not r['suggested'] else ' (run not re-run)' if r['suggested_run'] is None else ''} |")
     (out / "sweep.md").write_text("\n".join(lines) + "\n")
 
 
@@ -232,8 +237,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", default="bevel_sweep")
     ap.add_argument("--only", type=int, nargs="*", help="run only these pair indices")
     ap.add_argument("--rounds", type=int, default=3, help="re-runs with the values the messages name")
+    ap.add_argument("--suggested-tca-only", action="store_true",
+                    help="re-run a pair with the suggested values by `ltca tca` alone (no FE run)")
     a = ap.parse_args(argv)
-    rows = sweep(a.pairs, Path(a.out), only=a.only, rounds=a.rounds)
+    rows = sweep(a.pairs, Path(a.out), only=a.only, rounds=a.rounds, suggested_run=not a.suggested_tca_only)
     print((Path(a.out) / "sweep.md").read_text())
     return 0 if all(not (r["tca_traceback"] or r["run_traceback"]) for r in rows) else 1
 
