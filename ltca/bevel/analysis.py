@@ -149,8 +149,11 @@ def execute(p: BevelPlan, progress=None, cache: str | None = None, store=None) -
         side = "concave" if T > 0 else "convex"
         if side not in bodies:
             t1 = time.perf_counter()
-            bodies[side] = prepare_bodies(pair, side, p.fid, case.young, case.poisson, cache, progress,
-                                          mounting=case.mounting)
+            try:
+                bodies[side] = prepare_bodies(pair, side, p.fid, case.young, case.poisson, cache, progress,
+                                              mounting=case.mounting)
+            except MeshingError as exc:        # a flank the body's grid cannot reach: the design limits
+                raise synthesis_error(case, exc, getattr(case, "file", None)) from None
             timings[f"compliance_{FLANK[side]}"] = time.perf_counter() - t1
             t1 = time.perf_counter()
             runs[side] = {"lm": loaded_model(pair, bodies[side], p.asm)}

@@ -25,12 +25,13 @@ import numpy as np
 
 from ltca.geometry.bevel.blank import design_blank
 from ltca.geometry.bevel.design import cycle_metrics, synthesize_flank
-from ltca.geometry.bevel.generation import MeshingError, standard_gear_cut
+from ltca.geometry.bevel.generation import MeshingError, generate_flank, standard_gear_cut
 from ltca.geometry.bevel.machine import MemberCut
 from ltca.geometry.bevel.separation import separation_tca
 from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca
 
 from ..validation import DesignError
+from .loaded_model import BODY_GRID, body_grid_offsets
 
 __all__ = ["WorkingValue", "LimitSearch", "BevelDesignLimit", "flank_failure", "working_values"]
 
@@ -62,7 +63,7 @@ class WorkingValue:
     def words(self) -> str:
         """``'bevel.working.path_angle_deg' = 0 deg is out of reach for this blank: 21 deg works (checked)``."""
         return (f"'{self.field}' = {self.value:g} {self.unit} is out of reach for this blank: {self.works:g} "
-                f"{self.unit} works (checked: synthesis and unloaded TCA)")
+                f"{self.unit} works (checked: synthesis, unloaded TCA, separation field and body grid)")
 
 
 @dataclass(frozen=True)
@@ -108,30 +109,34 @@ class _Budget:
 
 def flank_failure(blank, gear: MemberCut, side: str, target, blank_offset: float | None = None,
                   max_iter: int = 20) -> tuple[str | None, BevelPair | None]:
-    """(None, the pair with this flank on the pinion) when the pinion flank ``side`` is synthesised for ``target``
-    and its unloaded TCA over three cycles runs (as ``ltca tca`` runs it, on the ideal mounting); else (the
-    failure in one line, None).  ``max_iter``: Newton iterations of the control-point design (fewer: a quicker
-    refusal of a slow design)."""
+    """(None, the pair with this flank on the pinion) when the pinion flank ``side`` is made for ``target`` as
+    ``ltca tca`` and ``ltca run`` need it: synthesised, its unloaded TCA over three cycles and its separation field
+    on the ideal mounting, and its grid of the FE body; else (the failure in one line, None).  ``max_iter``: Newton
+    iterations of the control-point design (fewer: a quicker refusal of a slow design)."""
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore", RuntimeWarning)
         try:
             fc, _ = synthesize_flank(blank, gear, side, target, blank_offset, max_iter)
             pair = BevelPair(blank, gear, MemberCut("pinion", blank.pinion.z, fc, fc))
             cycle_metrics(tca(pair, side, Assembly(), steps_per_cycle=16, max_cycles=3.0), blank)
+            separation_tca(pair, side, Assembly(), steps_per_cycle=16, cycles=3.0)
+            _body_grid(fc, blank, "pinion")
         except _FAILURES as exc:
             return _line(exc), None
     return None, pair
 
 
-def _separation_failure(pair: BevelPair, side: str) -> str | None:
-    """The separation-field TCA of the flank pair (the ``tca`` command's second analysis): None when it runs."""
-    with warnings.catch_warnings(), np.errstate(all="ignore"):
-        warnings.simplefilter("ignore", RuntimeWarning)
+def _body_grid(fc, blank, member: str) -> None:
+    """The flank's grid of the FE body (:func:`ltca.bevel.loaded_model.member_flanks`) at either start above the
+    root cone; raises the MeshingError of the last."""
+    offs = body_grid_offsets(blank)
+    for k, off in enumerate(offs):
         try:
-            separation_tca(pair, side, Assembly(), steps_per_cycle=16, cycles=3.0)
-        except _FAILURES as exc:
-            return _line(exc)
-    return None
+            generate_flank(fc, blank, member, *BODY_GRID, off)
+            return
+        except MeshingError:
+            if k == len(offs) - 1:
+                raise
 
 
 def _line(exc: BaseException) -> str:
@@ -200,10 +205,7 @@ def _flank_value(case, blank, gear, side: str, failure: str, budget: _Budget) ->
 
         found = _search(works, x0, anchors, digits, log_scale)
         if found is not None:
-            fail = _separation_failure(seen[found], side)
-            if fail is None:
-                return WorkingValue(field, x0, found, unit, failure)
-            log.debug("%s = %g: %s", field, found, fail)
+            return WorkingValue(field, x0, found, unit, failure)
         if budget.used >= budget.trials:
             return None
     return None
@@ -218,6 +220,8 @@ def _pair_failure(case, cutter_radius: float | None = None) -> tuple[str | None,
         try:
             blank = design_blank(basic)
             gear = standard_gear_cut(blank)
+            for s in ("concave", "convex"):
+                _body_grid(gear.flank(s), blank, "gear")
         except _FAILURES as exc:
             return _line(exc), [], None, None
     fails = {s: flank_failure(blank, gear, s, case.targets[s], case.blank_offset)[0] for s in ("concave", "convex")}
