@@ -246,7 +246,7 @@ def _cutter_value(case, failure: str, budget: _Budget) -> WorkingValue | None:
     return None
 
 
-def working_values(case, trials: int = 24, seconds: float = 60.0) -> LimitSearch:
+def working_values(case, trials: int = 24, seconds: float = 900.0) -> LimitSearch:
     """Why the case's pinion cannot be made on the ideal mounting, and for each failing flank a target value that
     works (or a cutter radius that works for the whole pair).
 
@@ -255,7 +255,9 @@ def working_values(case, trials: int = 24, seconds: float = 60.0) -> LimitSearch
     case : BevelCase
         A case with synthesis targets (not settings sheets).
     trials, seconds : int, float
-        At most this many syntheses with an unloaded TCA each, and about this wall time.
+        At most this many trials (each a flank's synthesis, unloaded TCA, separation field and body grid, 1 to 4 s
+        on one core), and a guard on the wall time: the trials bound the search, so that ``ltca tca`` and ``ltca
+        run`` of a case find the same values on a loaded machine.
 
     Returns
     -------
