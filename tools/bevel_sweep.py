@@ -17,7 +17,9 @@ message of that run naming another value is applied in turn, up to ``--rounds`` 
 works": that case runs with both commands.
 
     nice -n 5 python3 tools/bevel_sweep.py --pairs 32 --out /tmp/bevel_sweep
-writes ``sweep.csv`` and ``sweep.md`` (the table and the counts) to ``--out``.
+writes ``sweep.csv`` and ``sweep.md`` (the table and the counts) to ``--out``.  On a busy machine
+``--suggested-tca-only`` re-runs the suggested cases by ``ltca tca`` alone, and ``--run-suggested`` (same
+``--out``) then adds their ``ltca run``.
 """
 from __future__ import annotations
 
@@ -220,7 +222,9 @@ def _write(rows: list[dict], out: Path) -> None:
     lines = [(f"pairs {len(rows)}: run {ok}, exit 2 naming a field {named} (and a value {valued}), disagree "
               f"{sum(not r['agree'] for r in rows)}, traceback or warning {bad} (also in the re-runs)"),
              f"suggested value works: {len(works)} of {valued} (with the first suggestion {first}, "
-             f"{len(works) - first} after more rounds)", "",
+             f"{len(works) - first} after more rounds; `ltca tca` and `ltca run` both "
+             f"{sum(r['suggested_run'] == 0 for r in works)}, `ltca tca` alone "
+             f"{sum(r['suggested_run'] is None for r in works)})", "",
              "| # | z1/z2 | spiral deg | shaft deg | rc/Am | tca | run | field / message | suggested | works (tca, run) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -231,6 +235,42 @@ def _write(rows: list[dict], out: Path) -> None:
     (out / "sweep.md").write_text("\n".join(lines) + "\n")
 
 
+def _read(out: Path) -> list[dict]:
+    """The rows of ``out/sweep.csv`` with their types (statuses int, flags bool, ``""`` run status None)."""
+    def typed(k: str, v: str):
+        if v in ("True", "False"):
+            return v == "True"
+        if k in ("i", "z1", "z2", "suggested_rounds") or (k.endswith("_status") and v.lstrip("-").isdigit()):
+            return int(v)
+        if k in ("beta", "sigma", "cutter_factor") or k.endswith("_seconds"):
+            return float(v)
+        if k == "suggested_run":
+            return int(v) if v.lstrip("-").isdigit() else None
+        return v
+    with open(out / "sweep.csv", newline="") as fh:
+        return [{k: typed(k, v) for k, v in r.items()} for r in csv.DictReader(fh)]
+
+
+def run_suggested(out: Path, timeout: float = 900.0, progress=print) -> list[dict]:
+    """``ltca run`` of each suggested case whose ``ltca tca`` ran in a sweep with ``suggested_run=False``: the
+    rows' run status and "works" updated, ``sweep.csv`` and ``sweep.md`` written again."""
+    rows = _read(out)
+    for r in rows:
+        if not (r["suggested"] and r["suggested_works"] and r["suggested_run"] is None):
+            continue
+        k = r["suggested_rounds"]
+        run = _run(["run", str(out / f"pair_{r['i']:02d}_suggested_{k}.toml"), "--out",
+                    str(out / f"run_{r['i']:02d}_s{k}"), "--fidelity", "coarse", "--positions", "5", "--quiet"],
+                   timeout)
+        r.update(suggested_run=run["status"], suggested_works=run["status"] == 0,
+                 suggested_bad=r["suggested_bad"] or _bad(run))
+        if run["status"] != 0:
+            r["suggested_message"] = run["message"][:300]
+        progress(f"{r['i']:2d}: run with {r['suggested']}: {run['status']} ({run['seconds']:.0f} s)")
+        _write(rows, out)
+    return rows
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--pairs", type=int, default=32)
@@ -239,8 +279,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--rounds", type=int, default=3, help="re-runs with the values the messages name")
     ap.add_argument("--suggested-tca-only", action="store_true",
                     help="re-run a pair with the suggested values by `ltca tca` alone (no FE run)")
+    ap.add_argument("--run-suggested", action="store_true",
+                    help="only `ltca run` the suggested cases of an earlier --suggested-tca-only sweep in --out")
     a = ap.parse_args(argv)
-    rows = sweep(a.pairs, Path(a.out), only=a.only, rounds=a.rounds, suggested_run=not a.suggested_tca_only)
+    if a.run_suggested:
+        rows = run_suggested(Path(a.out))
+    else:
+        rows = sweep(a.pairs, Path(a.out), only=a.only, rounds=a.rounds, suggested_run=not a.suggested_tca_only)
     print((Path(a.out) / "sweep.md").read_text())
     return 0 if all(not (r["tca_traceback"] or r["run_traceback"]) for r in rows) else 1
 
