@@ -7,9 +7,10 @@ relative curvature along the path may be too small for the ellipse, the blade th
 negative ratio of roll.  Which target limits is not known in closed form, so :func:`working_values` searches: each
 flank the user's targets cannot make is tried again with one target changed (the path angle first, then the
 ellipse axis, then the TE magnitude), at a few values stepping away from the user's until one works, then bisected
-back towards the user's value; every trial is the flank's synthesis and its unloaded TCA over three cycles as
-``ltca tca`` runs it (the checked value is one of them).  A gear the cutter cannot cut, or a flank no target
-change rescues, is tried with another cutter radius.  Bounded by a number of trials and a time budget.
+back towards the user's value; every trial makes the flank as ``ltca tca`` and ``ltca run`` need it (its synthesis,
+unloaded TCA over three cycles and separation field on the ideal mounting, and its grid of the FE body), and the
+value named is one that was tried and worked.  A gear the cutter cannot cut, or a flank no target change rescues,
+is tried with other cutter radii.  Bounded by a number of trials (a wall-time guard besides).
 
 :class:`BevelDesignLimit` (a :class:`ltca.validation.DesignError`: exit 2, one line) carries the values found.
 """
