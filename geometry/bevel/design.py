@@ -34,7 +34,7 @@ from .machine import FlankCut, MemberCut
 from .synthesis import FlankTarget, local_synthesis
 from .tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, TCAResult, tca
 
-__all__ = ["path_line", "cycle_metrics", "control_point_design", "synthesize_pinion"]
+__all__ = ["path_line", "cycle_metrics", "control_point_design", "synthesize_flank", "synthesize_pinion"]
 
 
 def path_line(L: np.ndarray, Rn: np.ndarray, blank: BevelBlank) -> tuple[float, float]:
@@ -164,6 +164,25 @@ def control_point_design(blank: BevelBlank, gear: MemberCut, pinion_side: str, t
                     metrics=cycle_metrics(r, blank), synthesis=info)
 
 
+def synthesize_flank(blank: BevelBlank, gear: MemberCut, pinion_side: str, target: FlankTarget,
+                     blank_offset: float | None = None, max_iter: int = 20) -> tuple[FlankCut, dict]:
+    """One pinion flank by the control-point design, then, with ``blank_offset`` a number, the redesign at that Em1
+    started from it (Cao et al. 2008 sec. 3); the flanks of a pinion are independent of each other.  ``max_iter``:
+    Newton iterations of each design (:func:`control_point_design`).
+
+    Returns
+    -------
+    FlankCut, dict
+        The flank's settings and ``{"design": info, "redesign": info or None}`` (:func:`control_point_design`).
+    """
+    fc, info = control_point_design(blank, gear, pinion_side, target, max_iter=max_iter)
+    info2 = None
+    if blank_offset is not None:
+        fc, info2 = control_point_design(blank, gear, pinion_side, target, blank_offset, (info["C"], info["D"]), fc,
+                                         max_iter=max_iter)
+    return fc, dict(design=info, redesign=info2)
+
+
 def synthesize_pinion(blank: BevelBlank, gear: MemberCut, targets: dict[str, FlankTarget],
                       blank_offset: float | None = None) -> tuple[MemberCut, dict]:
     """Both pinion flanks by the control-point design; with ``blank_offset`` a number, first the free
@@ -183,9 +202,5 @@ def synthesize_pinion(blank: BevelBlank, gear: MemberCut, targets: dict[str, Fla
         raise ValueError(f"targets = {sorted(targets)!r}: give both 'concave' and 'convex'")
     cuts, infos = {}, {}
     for side, tg in targets.items():
-        fc, info = control_point_design(blank, gear, side, tg)
-        info2 = None
-        if blank_offset is not None:
-            fc, info2 = control_point_design(blank, gear, side, tg, blank_offset, (info["C"], info["D"]), fc)
-        cuts[side], infos[side] = fc, dict(design=info, redesign=info2)
+        cuts[side], infos[side] = synthesize_flank(blank, gear, side, tg, blank_offset)
     return MemberCut("pinion", blank.pinion.z, cuts["concave"], cuts["convex"]), infos

@@ -18,6 +18,7 @@ from ..errors import CaseError
 from ..outputs import take_or_solve
 from ..validation import DesignError
 from .case import BevelCase, case_blank, check_bevel_torques
+from .limits import BevelDesignLimit, working_values
 from .loaded import BevelPosition, solve_position
 from .loaded_model import BevelBodies, BevelFidelity, loaded_model, prepare_bodies
 
@@ -39,7 +40,16 @@ def build_pair(case: BevelCase) -> BevelPair:
 
 def synthesis_error(case: BevelCase, exc: Exception, file: str | None = None) -> DesignError:
     """The user's design (targets, blank, cutter) has no solution in the cradle model: the error (exit 2) that
-    names the inputs, the same for ``ltca tca`` and ``ltca run``."""
+    names the inputs, the same for ``ltca tca`` and ``ltca run``.
+
+    For a case with synthesis targets, :func:`ltca.bevel.limits.working_values` searches the limiting field and a
+    value of it that works (a :class:`ltca.bevel.limits.BevelDesignLimit` naming both); where the pair is made on
+    the ideal mounting, or the search finds no value within its budget, the error names the inputs that drive it."""
+    searched = None
+    if not case.cuts and case.targets:
+        searched = working_values(case)
+        if searched.found:
+            return BevelDesignLimit(searched.failure, searched.found, file)
     side = "working" if "concave" in str(exc) else "coast" if "convex" in str(exc) else "working/coast"
     asm = case.assembly or {}
     mounted = [f"assembly.{key}" for name, key in (("E", "E_mm"), ("P", "P_mm"), ("G", "G_mm"),
@@ -54,7 +64,11 @@ def synthesis_error(case: BevelCase, exc: Exception, file: str | None = None) ->
                        (*mounted, f"bevel.{side}.path_angle_deg", f"bevel.{side}.te_magnitude_arcsec",
                         f"bevel.{side}.ellipse_major_mm", "bevel.spiral_angle_deg", "bevel.cutter_radius_mm"),
                        ("smaller assembly errors, or " if mounted else "") +
-                       "move the targets towards the shipped case's values", file=file)
+                       ("move the targets towards the shipped case's values" if searched is None or
+                        searched.failure is None else
+                        f"no single change of the failing flank's path angle, ellipse axis or TE magnitude, nor a "
+                        f"cutter radius of 0.6 to 1.2 mean cone distances, made the pinion in {searched.trials} "
+                        "trials: change several targets at once, towards the shipped case's values"), file=file)
 
 
 def cycle_positions(n: int, z1: int) -> np.ndarray:
@@ -140,8 +154,11 @@ def execute(p: BevelPlan, progress=None, cache: str | None = None, store=None) -
         side = "concave" if T > 0 else "convex"
         if side not in bodies:
             t1 = time.perf_counter()
-            bodies[side] = prepare_bodies(pair, side, p.fid, case.young, case.poisson, cache, progress,
-                                          mounting=case.mounting)
+            try:
+                bodies[side] = prepare_bodies(pair, side, p.fid, case.young, case.poisson, cache, progress,
+                                              mounting=case.mounting)
+            except MeshingError as exc:        # a flank the body's grid cannot reach: the design limits
+                raise synthesis_error(case, exc, getattr(case, "file", None)) from None
             timings[f"compliance_{FLANK[side]}"] = time.perf_counter() - t1
             t1 = time.perf_counter()
             runs[side] = {"lm": loaded_model(pair, bodies[side], p.asm)}

@@ -22,9 +22,20 @@ from ltca.geometry.bevel.tca import Assembly, BevelPair
 from .model import LOADED, MESHED, BevelBodies, BevelFidelity, BevelLoadedModel, BevelMounting
 
 __all__ = ["BevelFidelity", "BevelMounting", "BevelBodies", "BevelLoadedModel", "prepare_bodies", "member_flanks",
-           "loaded_model", "body_t", "LOADED", "MESHED"]
+           "loaded_model", "body_t", "LOADED", "MESHED", "BODY_GRID", "body_grid_offsets"]
 
 log = logging.getLogger(__name__)
+
+
+#: (depth, face) nodes of the flank grid a body is built on
+BODY_GRID = (9, 13)
+
+
+def body_grid_offsets(blank) -> tuple[float, float]:
+    """Where the body's flank grid starts above the root cone, mm, in the order tried: a little above it; where a
+    cutter's fillet does not reach that low (a synthesised pinion of another pair), where the TCA's own grid starts
+    (half the clearance)."""
+    return 0.03 * blank.data.module, 0.5 * (blank.pinion.dedendum - blank.gear.addendum)
 
 
 def member_flanks(pair: BevelPair, member: str) -> tuple[dict, float, float]:
@@ -33,12 +44,10 @@ def member_flanks(pair: BevelPair, member: str) -> tuple[dict, float, float]:
     takes them."""
     bl = pair.blank
     mb, cut = bl.member(member), (pair.pinion if member == "pinion" else pair.gear)
-    # the body's flank grid starts a little above the root cone; where a cutter's fillet does not reach that low
-    # (a synthesised pinion of another pair), start where the TCA's own grid starts (half the clearance)
-    offs = (0.03 * bl.data.module, 0.5 * (bl.pinion.dedendum - bl.gear.addendum))
+    offs = body_grid_offsets(bl)
     for k, off in enumerate(offs):
         try:
-            fl = {s: generate_flank(cut.flank(s), bl, member, 9, 13, off) for s in ("concave", "convex")}
+            fl = {s: generate_flank(cut.flank(s), bl, member, *BODY_GRID, off) for s in ("concave", "convex")}
             break
         except MeshingError as exc:
             if k == len(offs) - 1:

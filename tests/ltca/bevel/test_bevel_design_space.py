@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tools.bevel_sweep import CASE, grid
+from tools.bevel_sweep import CASE, grid, suggestions
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -75,8 +75,9 @@ def test_flank_point_at_the_blade_kink(tmp_path):
 
 
 def test_tca_and_run_same_exit_2(tmp_path):
-    """35/160 with a cutter of 1.1 mean cone distances: the synthesis finds no blade; tca and run both exit 2 with
-    the same one-line message (no traceback)."""
+    """35/160 with a cutter of 1.1 mean cone distances: the synthesis finds no blade for the working path angle of
+    22 deg; tca and run both exit 2 with the same one-line message (no traceback), naming the path angle and a value
+    of it that works."""
     case = _case(tmp_path, 3)
     out = []
     for cmd in (["tca", str(case)], ["run", str(case), "--out", str(tmp_path / "run"), "--quiet"]):
@@ -85,4 +86,5 @@ def test_tca_and_run_same_exit_2(tmp_path):
                            cwd=str(ROOT), timeout=600)
         assert p.returncode == 2 and "Traceback" not in p.stderr and "Warning" not in p.stderr, p.stderr
         out.append(p.stderr.split("error: ", 1)[1].split("synthesis/TCA failed", 1)[1])
-    assert out[0] == out[1] and "bevel.cutter_radius_mm" in out[0]
+    assert out[0] == out[1] and "'bevel.working.path_angle_deg' = 22 deg is out of reach" in out[0]
+    assert set(suggestions(out[0])) == {"bevel.working.path_angle_deg"}
