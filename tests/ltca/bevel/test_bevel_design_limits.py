@@ -30,6 +30,7 @@ def _pair_text() -> str:
     return with_values(text, {"bevel.working.path_angle_deg": 0.0})
 
 
+@pytest.mark.heavy
 def test_path_angle_out_of_reach_names_a_value_that_runs(tmp_path, capsys):
     case = tmp_path / "pair_17_29.toml"
     case.write_text(_pair_text())
