@@ -12,6 +12,7 @@ from fixtures.paths import BEVEL_CASE
 CASE = BEVEL_CASE
 
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("path_angle, status", [(0.0, 0), (-1.5, 2)])
 def test_in_range_path_angle(tmp_path, path_angle, status):
     text = CASE.read_text().replace("path_angle_deg = 22.0", f"path_angle_deg = {path_angle}", 1)
