@@ -25,14 +25,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ltca.geometry.bevel.design import cycle_metrics, synthesize_flank
-from ltca.geometry.bevel.generation import MeshingError, generate_flank, standard_gear_cut
+from ltca.geometry.bevel.generation import MeshingError, standard_gear_cut
 from ltca.geometry.bevel.machine import MemberCut
 from ltca.geometry.bevel.separation import separation_tca
 from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, tca
 
 from ..validation import DesignError
 from .case import case_blank
-from .loaded_model import BODY_GRID, body_grid_offsets
+from .loaded_model import body_grid_flanks
 
 __all__ = ["WorkingValue", "LimitSearch", "BevelDesignLimit", "flank_failure", "working_values"]
 
@@ -128,16 +128,9 @@ def flank_failure(blank, gear: MemberCut, side: str, target, blank_offset: float
 
 
 def _body_grid(fc, blank, member: str) -> None:
-    """The flank's grid of the FE body (:func:`ltca.bevel.loaded_model.member_flanks`) at either start above the
-    root cone; raises the MeshingError of the last."""
-    offs = body_grid_offsets(blank)
-    for k, off in enumerate(offs):
-        try:
-            generate_flank(fc, blank, member, *BODY_GRID, off)
-            return
-        except MeshingError:
-            if k == len(offs) - 1:
-                raise
+    """The flank's grid of the FE body (:func:`ltca.bevel.loaded_model.body_grid_flanks`); raises its
+    MeshingError."""
+    body_grid_flanks({"flank": fc}, blank, member)
 
 
 def _line(exc: BaseException) -> str:

@@ -22,7 +22,7 @@ from ltca.geometry.bevel.tca import Assembly, BevelPair
 from .model import LOADED, MESHED, BevelBodies, BevelFidelity, BevelLoadedModel, BevelMounting
 
 __all__ = ["BevelFidelity", "BevelMounting", "BevelBodies", "BevelLoadedModel", "prepare_bodies", "member_flanks",
-           "loaded_model", "body_t", "LOADED", "MESHED", "BODY_GRID", "body_grid_offsets"]
+           "loaded_model", "body_t", "LOADED", "MESHED", "BODY_GRID", "body_grid_offsets", "body_grid_flanks"]
 
 log = logging.getLogger(__name__)
 
@@ -38,22 +38,28 @@ def body_grid_offsets(blank) -> tuple[float, float]:
     return 0.03 * blank.data.module, 0.5 * (blank.pinion.dedendum - blank.gear.addendum)
 
 
+def body_grid_flanks(cuts: dict, blank, member: str) -> tuple[dict, float]:
+    """The flanks of ``cuts`` (side -> :class:`ltca.geometry.bevel.machine.FlankCut`) generated on the body's flank
+    grid (:data:`BODY_GRID`) at the first of :func:`body_grid_offsets` where all of them generate, and that offset
+    (mm); raises the MeshingError of the last offset."""
+    offs = body_grid_offsets(blank)
+    for k, off in enumerate(offs):
+        try:
+            return {s: generate_flank(fc, blank, member, *BODY_GRID, off) for s, fc in cuts.items()}, off
+        except MeshingError as exc:
+            if k == len(offs) - 1:
+                raise
+            log.info("%s flank grid %.3f mm above the root cone not generated (%s); starting at %.3f mm, where the "
+                     "TCA's grid starts", member, off, exc, offs[k + 1])
+
+
 def member_flanks(pair: BevelPair, member: str) -> tuple[dict, float, float]:
     """The member's two generated flanks on the body's axial grid, the grid's root offset (mm) and the rotation
     of the convex flank that gives the design thickness (rad), as :class:`ltca.fem.solids.bevel_body.BevelBodySpec`
     takes them."""
     bl = pair.blank
     mb, cut = bl.member(member), (pair.pinion if member == "pinion" else pair.gear)
-    offs = body_grid_offsets(bl)
-    for k, off in enumerate(offs):
-        try:
-            fl = {s: generate_flank(cut.flank(s), bl, member, *BODY_GRID, off) for s in ("concave", "convex")}
-            break
-        except MeshingError as exc:
-            if k == len(offs) - 1:
-                raise
-            log.info("%s flank grid %.3f mm above the root cone not generated (%s); starting at %.3f mm, where the "
-                     "TCA's grid starts", member, off, exc, offs[k + 1])
+    fl, off = body_grid_flanks({s: cut.flank(s) for s in ("concave", "convex")}, bl, member)
     jm = 6
     rn = fl["concave"].meta["Rn"][:, jm]
     t_pitch = float(np.interp(0.0, rn, fl["concave"].u))
