@@ -282,6 +282,7 @@ def test_fuzz_command_line_options(tmp_path, monkeypatch, capsys):
     (only the validation runs). A valid value must pass (exit 0), an invalid one must end in exit 2 with one line;
     no traceback, no silent acceptance of NaN, inf, negative or absurd values."""
     import ltca.cli as cli
+    monkeypatch.chdir(tmp_path)          # a relative --cache value ("0", "abc") is a folder made in the cwd
     for name in ("_cmd_run", "_cmd_tca", "_cmd_study", "_cmd_optimise", "_cmd_bench", "_cmd_validate"):
         monkeypatch.setattr(cli, name, lambda a: 0)
     rng = random.Random(SEED)
