@@ -64,6 +64,8 @@ class ComplianceSpec:
     far_teeth: str = "none"       # teeth away from the load: "none" (root circle) or "full" (see fem.solids.gear_body)
     fillet: float = 0.0           # element size on the loaded teeth's read fillets / their smallest radius of curvature
                                   # (fem.fillet.fillet_size); 0: h_flank
+    periodic: bool = True         # load the centre loaded tooth only and read its neighbours (fem.periodic): the
+                                  # fine teeth are turned copies on a body of revolution; else load every loaded tooth
 
 
 @dataclass
@@ -238,7 +240,7 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     spacing = max(np.diff(s_grid).max(), np.diff(z_grid).max())
     return flank_compliance(spec, mesh, "rim" if profile.internal else "bore", flanks, s_grid, z_grid, depth,
                             spacing, names, R, root_tooth, {"mesh": t_mesh}, say, recovery="nodal",
-                            refine=PATCH_REFINE)
+                            refine=PATCH_REFINE, pitch=-2 * np.pi / profile.z if spec.periodic else None)
 
 
 def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray, z_grid: np.ndarray,

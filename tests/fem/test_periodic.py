@@ -67,3 +67,31 @@ def test_other_teeth_loads_agree_with_their_own_solves(both):
     assert np.abs(per.root_stress - full.root_stress).max() < 0.01 * np.abs(full.root_stress).max()
     f = np.ones(per.C.shape[0])
     assert per.root_max(f) == pytest.approx(full.root_max(f), rel=0.01)
+
+
+@pytest.fixture(scope="module")
+def spur(fzg_model):
+    """A coarse FZG pinion body loaded both ways: its gmsh mesh is not a turned copy from tooth to tooth."""
+    import dataclasses
+
+    from ltca.fem.compliance import ComplianceSpec, body_compliance
+    base = ComplianceSpec(teeth=(-2, -1, 0, 1, 2), loaded=(-1, 0, 1), side=+1, r_range=fzg_model.pinion_range(),
+                          grid=(5, 4), face_width=14.0, r_bore=fzg_model.r_bore1, h_flank=2.0, h_body=7.2, depth=1.5,
+                          young=206000.0, poisson=0.3, root_points=(2, 2))
+    return {periodic: body_compliance(fzg_model.pinion, dataclasses.replace(base, periodic=periodic)).without_solver()
+            for periodic in (True, False)}
+
+
+def test_cylindrical_body_periodic_against_every_tooth_loaded(spur):
+    """Cylindrical tooth k is tooth 0 turned by -k 2 pi / z: the centre tooth's loads are the same solves; the other
+    teeth's blocks and root stresses differ by the difference of two unstructured meshes. Measured on this coarse
+    body: compliance 0.6 % of the largest diagonal term, root stresses 5 % of the largest (the fillet mesh); a turn
+    the wrong way (the tooth ahead read for the tooth behind): root stresses 53 %, a tooth's largest 139 %."""
+    per, full = spur[True], spur[False]
+    m = 5 * 4
+    scale = np.abs(np.diag(full.C)).max()
+    assert np.abs(per.C[:, m:2 * m] - full.C[:, m:2 * m]).max() < 1e-3 * scale
+    assert np.abs(per.C - full.C).max() < 0.01 * scale
+    assert np.abs(per.root_stress - full.root_stress).max() < 0.15 * np.abs(full.root_stress).max()
+    f = np.ones(per.C.shape[0])
+    assert per.root_max(f) == pytest.approx(full.root_max(f), rel=0.1)
