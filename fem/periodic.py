@@ -7,7 +7,9 @@ displacements normal to the flank unchanged, stresses turned back by ``(b - c) *
 alone and reading it and its neighbours up to ``n - 1`` teeth away (n loaded teeth) gives every block of the
 n x n compliance and of the root-stress influence with a third of the back-substitutions for three loaded teeth.
 The blocks at tooth distance 0 are the centre tooth's for every loaded tooth, which is the more complete
-neighbourhood: the centre tooth has the most fine neighbours.
+neighbourhood: the centre tooth has the most fine neighbours. A freely meshed body (the cylindrical ones, gmsh) has
+teeth of the same shape but not the same mesh: the blocks then carry the centre tooth's mesh, a difference of the
+size of the discretisation error (docs/design.md, "Compliance computed once").
 """
 from __future__ import annotations
 
