@@ -37,10 +37,11 @@ from .fillet import fillet_points, fillet_size
 from .loads import patch_loads, patch_quadrature
 from .periodic import periodic_offsets, turn_z, voigt_turn
 from .readout import interpolation_matrix, nodal_stress, stress_matrix
-from .solids import GearBodySpec, build_gear_body
+from .solids import BodyMesh, GearBodySpec, build_gear_body
 from .solver import factorize
 
-__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "flank_compliance", "principal_max", "body_spec"]
+__all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "pair_compliance", "flank_compliance", "principal_max",
+           "body_spec"]
 
 
 @dataclass(frozen=True)
@@ -203,7 +204,8 @@ def body_spec(profile, spec: ComplianceSpec) -> GearBodySpec:
                         fillets=tuple(f"fillet_{k}_{side}" for k in spec.loaded) if h_fillet else ())
 
 
-def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None) -> BodyCompliance:
+def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None,
+                    mesh: BodyMesh | None = None) -> BodyCompliance:
     """Mesh, assemble, factorise and load one cylindrical gear body; see the module docstring.
 
     Parameters
@@ -214,11 +216,16 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
         Mesh cache directory.
     progress : callable(str), optional
         Called with a short message at each step.
+    mesh : BodyMesh, optional
+        The body already meshed (``build_gear_body(body_spec(profile, spec))``); default: mesh it here.
     """
     say = progress or (lambda msg: None)
     t0 = time.perf_counter()
-    mesh = build_gear_body(body_spec(profile, spec), cache_dir=cache_dir)
-    t_mesh = time.perf_counter() - t0
+    if mesh is None:
+        mesh = build_gear_body(body_spec(profile, spec), cache_dir=cache_dir)
+        t_mesh = time.perf_counter() - t0
+    else:
+        t_mesh = mesh.seconds
     say(f"meshed z={profile.z}: {len(mesh.nodes)} nodes, {len(mesh.tets)} tets, {3 * len(mesh.nodes)} dofs "
         f"({t_mesh:.1f} s)")
     ns, nz = spec.grid
@@ -241,6 +248,36 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
     return flank_compliance(spec, mesh, "rim" if profile.internal else "bore", flanks, s_grid, z_grid, depth,
                             spacing, names, R, root_tooth, {"mesh": t_mesh}, say, recovery="nodal",
                             refine=PATCH_REFINE, pitch=-2 * np.pi / profile.z if spec.periodic else None)
+
+
+def pair_compliance(profiles, specs, cache_dir=None, progress=None) -> tuple[BodyCompliance, BodyCompliance]:
+    """Both bodies of a pair, the second one meshed (gmsh, one thread) while the first one is assembled, factorised
+    and loaded (PARDISO, both cores); gmsh is only ever called from one thread at a time.
+
+    Parameters
+    ----------
+    profiles : (ToothProfile, ToothProfile)
+    specs : (ComplianceSpec, ComplianceSpec)
+    cache_dir, progress
+        As for :func:`body_compliance`.
+
+    Returns
+    -------
+    (BodyCompliance, BodyCompliance)
+    """
+    from concurrent.futures import ThreadPoolExecutor
+
+    (p1, p2), (s1, s2) = profiles, specs
+    mesh1 = build_gear_body(body_spec(p1, s1), cache_dir=cache_dir)
+    with ThreadPoolExecutor(1, thread_name_prefix="ltca-mesh") as pool:
+        mesh2 = pool.submit(build_gear_body, body_spec(p2, s2), cache_dir)
+        try:
+            body1 = body_compliance(p1, s1, cache_dir, progress, mesh=mesh1)
+        except BaseException:
+            mesh2.cancel()
+            raise
+        body2 = body_compliance(p2, s2, cache_dir, progress, mesh=mesh2.result())
+    return body1, body2
 
 
 def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray, z_grid: np.ndarray,

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ltca.fem.compliance import BodyCompliance, ComplianceSpec, body_compliance
+from ltca.fem.compliance import BodyCompliance, ComplianceSpec, pair_compliance
 from ltca.geometry.cylindrical import arc_length
 
 from .model import PairModel
@@ -173,8 +173,7 @@ def prepare(model: PairModel, fid: Fidelity, rolls: np.ndarray, torque: float, c
     plan = plan or plan_bodies(model, fid, rolls, torque, say)
     timings = {"tca": plan.t_tca}
     if bodies is None:
-        body1 = body_compliance(model.pinion, plan.spec1, cache_dir, say)
-        body2 = body_compliance(model.gear, plan.spec2, cache_dir, say)
+        body1, body2 = pair_compliance((model.pinion, model.gear), (plan.spec1, plan.spec2), cache_dir, say)
     else:
         body1, body2 = bodies
         if body1.spec != plan.spec1 or body2.spec != plan.spec2:

@@ -236,3 +236,21 @@ def test_mean_mesh_stiffness_in_iso_band(name, bore1, tmp_path):
     cp, cth = iso6336_stiffness(build_model(case))
     print(f"{name} bore {bore1}: mean c_gamma {k:.2f} N/(mm um), ISO c' {cp:.2f}, c'_th {cth:.2f}")
     assert 0.8 * cp <= k <= 1.2 * cth
+
+
+def test_pair_compliance_meshes_the_second_body_beside_the_first(fzg_model):
+    """Both bodies of a pair, the gear meshed in a second thread while the pinion is solved: the same compliance as
+    one body after the other (gmsh is called from one thread at a time; its meshes are deterministic)."""
+    from ltca.fem.compliance import ComplianceSpec, body_compliance, pair_compliance
+    m = fzg_model
+
+    def spec(side, r_range, r_bore):
+        return ComplianceSpec(teeth=(-2, -1, 0, 1, 2), loaded=(-1, 0, 1), side=side, r_range=r_range, grid=(4, 3),
+                              face_width=14.0, r_bore=r_bore, h_flank=2.5, h_body=8.0, depth=1.5, young=206000.0,
+                              poisson=0.3, root_points=(2, 2))
+    specs = (spec(+1, m.pinion_range(), m.r_bore1), spec(m.gear_side, m.gear_range(), m.r_bore2))
+    both = pair_compliance((m.pinion, m.gear), specs)
+    for profile, s, body in zip((m.pinion, m.gear), specs, both):
+        alone = body_compliance(profile, s)
+        assert body.mesh.spec_hash == alone.mesh.spec_hash and len(body.mesh.nodes) == len(alone.mesh.nodes)
+        np.testing.assert_allclose(body.C, alone.C, rtol=1e-9, atol=1e-12 * np.abs(alone.C).max())
