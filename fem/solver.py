@@ -42,7 +42,7 @@ from typing import Any, Callable
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["Factorization", "factorize", "available_methods"]
+__all__ = ["Factorization", "factorize", "available_methods", "nested_dissection"]
 
 _METHODS = ("auto", "pardiso", "pardiso-unsym", "cholmod", "cvxopt", "splu")
 _log = logging.getLogger(__name__)
@@ -215,8 +215,49 @@ def _cholmod(Kff: sp.csr_matrix):
     return (lambda b: fac(b)), None
 
 
-def _cvxopt(Kff: sp.csr_matrix):
-    """CHOLMOD through cvxopt: supernodal ``P K P' = L L'`` of the lower triangle.
+def nested_dissection(A: sp.csr_matrix, block: int = 1) -> np.ndarray | None:
+    """A fill-reducing ordering of a symmetric sparse matrix: METIS's nested dissection (pymetis) of its graph.
+
+    Parameters
+    ----------
+    A : scipy.sparse.csr_matrix, (m, m)
+        Its pattern is the graph (both triangles).
+    block : int
+        Rows come in consecutive groups of this many sharing one pattern (the 3 dofs of a node): the graph of the
+        groups is ordered, each group's rows kept together (a graph ``block**2`` times smaller).
+
+    Returns
+    -------
+    ndarray of int, (m,) or None
+        ``perm`` with row ``perm[k]`` eliminated k-th; None where pymetis is not installed.
+    """
+    try:
+        import pymetis
+    except ImportError:
+        return None
+    m = A.shape[0]
+    if block < 1 or m % block:
+        raise ValueError(f"block = {block}: must divide the {m} rows")
+    rows = np.repeat(np.arange(m), np.diff(A.indptr)) // block
+    G = sp.csr_matrix((np.ones(A.nnz, dtype=np.int32), (rows, A.indices // block)), shape=(m // block, m // block))
+    G = sp.csr_matrix(G + G.T)
+    G.setdiag(0)
+    G.eliminate_zeros()
+    graph = getattr(pymetis, "CSRAdjacency", None)
+    if graph is not None:
+        perm, _ = pymetis.nested_dissection(adjacency=graph(G.indptr, G.indices))
+    else:                                           # pymetis before 2025.2
+        perm, _ = pymetis.nested_dissection(xadj=G.indptr, adjncy=G.indices)
+    perm = np.asarray(perm, dtype=np.int64)
+    return (block * perm[:, None] + np.arange(block)).ravel()
+
+
+def _cvxopt(Kff: sp.csr_matrix, block: int = 1):
+    """CHOLMOD through cvxopt: supernodal ``P K P' = L L'`` of the lower triangle, P METIS's nested dissection
+    (:func:`nested_dissection`) where pymetis is installed, else CHOLMOD's own AMD.
+
+    On the spiral bevel gear body (206 k dofs) METIS's ordering cut cvxopt's numerical factorisation from 24.9 s to
+    8.2 s (AMD leaves about three times the flops; cvxopt's CHOLMOD has no METIS of its own), for 0.4 s of ordering.
 
     Returns ``solve(b)`` for dense b (m,) or (m, k), and ``solve_sparse(B)`` for a sparse B (m, k) giving a dense
     (m, k) array. cvxopt's dense ``cholmod.solve`` calls CHOLMOD once per column, a pass over the whole factor for
@@ -230,10 +271,13 @@ def _cvxopt(Kff: sp.csr_matrix):
                         matrix(A.col.astype(np.int64)), A.shape)
 
     low = cvx_sparse(sp.tril(Kff))
+    perm = nested_dissection(Kff, block)
+    _log.info("cvxopt CHOLMOD ordering: %s", "AMD (pymetis not installed)" if perm is None else "METIS")
     options = dict(cholmod.options)
     cholmod.options["supernodal"] = 2
     try:
-        fac = cholmod.symbolic(low, uplo="L")
+        fac = cholmod.symbolic(low, uplo="L") if perm is None else \
+            cholmod.symbolic(low, p=matrix(perm.astype(int)), uplo="L")
         cholmod.numeric(low, fac)
     finally:
         cholmod.options.clear()
@@ -314,7 +358,10 @@ def factorize(K: sp.spmatrix, fixed_dofs: np.ndarray, method: str = "auto") -> F
     elif method == "cholmod":
         solve, release = _cholmod(Kff)
     elif method == "cvxopt":
-        solve, release, solve_sparse = _cvxopt(Kff)
+        # whole nodes held (the 3 dofs of a node free or fixed together): order the graph of the nodes
+        f3 = free.reshape(-1, 3) if free.size % 3 == 0 else None
+        triples = f3 is not None and not (f3[:, 0] % 3).any() and bool((np.diff(f3, axis=1) == 1).all())
+        solve, release, solve_sparse = _cvxopt(Kff, 3 if triples else 1)
         return Factorization(free=free, method=method, n=n, _solve_free=solve, _release=release,
                              _solve_sparse=solve_sparse)
     else:
