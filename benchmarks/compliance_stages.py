@@ -1,6 +1,7 @@
 """Where a loaded analysis spends its time, body by body, beside the figures it computes.
 
-Runs one case through :func:`ltca.run` (nothing written) and prints, for each FE body, its size and the seconds of
+Runs one case through :func:`ltca.run` (nothing written) and prints, for each FE body, its size (nodes, tets, dofs,
+and the points of its loaded flank grids) and the seconds of
 each compliance stage (mesh, assembly, factorisation, set-up of loads and read-outs, the unit-load solves, the
 half-space part), then the contact time and the loaded TE and flank peak of every torque. With ``--against`` a
 summary.json of another run (another version of the code, another solver) is read and the differences of those
@@ -52,7 +53,7 @@ def main(argv: list[str] | None = None) -> int:
     res = ltca.run(args.case, positions=args.positions, torques_nm=args.torque, fidelity=args.fidelity)
     t_run = time.perf_counter() - t0
     stages = ("mesh", "assembly", "factorisation", "setup", "solves", "half-space")
-    print(f"{'body':>4} {'nodes':>7} {'tets':>7} {'dofs':>7} {'loads':>5} {'solver':>8} "
+    print(f"{'body':>4} {'nodes':>7} {'tets':>7} {'dofs':>7} {'grid':>5} {'solver':>8} "
           + " ".join(f"{s:>13}" for s in stages) + f" {'sum':>7}")
     for i, (nn, nt, nd, nl, meth, t) in enumerate(bodies):
         print(f"{i:4d} {nn:7d} {nt:7d} {nd:7d} {nl:5d} {meth:>8} " + " ".join(f"{t.get(s, 0):13.2f}" for s in stages)
