@@ -271,11 +271,7 @@ def pair_compliance(profiles, specs, cache_dir=None, progress=None) -> tuple[Bod
     mesh1 = build_gear_body(body_spec(p1, s1), cache_dir=cache_dir)
     with ThreadPoolExecutor(1, thread_name_prefix="ltca-mesh") as pool:
         mesh2 = pool.submit(build_gear_body, body_spec(p2, s2), cache_dir)
-        try:
-            body1 = body_compliance(p1, s1, cache_dir, progress, mesh=mesh1)
-        except BaseException:
-            mesh2.cancel()
-            raise
+        body1 = body_compliance(p1, s1, cache_dir, progress, mesh=mesh1)
         body2 = body_compliance(p2, s2, cache_dir, progress, mesh=mesh2.result())
     return body1, body2
 
