@@ -37,8 +37,9 @@ from .fillet import fillet_points, fillet_size
 from .loads import patch_loads, patch_quadrature
 from .periodic import periodic_offsets, turn_z, voigt_turn
 from .readout import interpolation_matrix, nodal_stress, stress_matrix
+from .serendipity import assemble_hex20, tet_interpolation
 from .solids import BodyMesh, GearBodySpec, build_gear_body
-from .solver import factorize
+from .solver import SubspaceFactorization, factorize
 
 __all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "pair_compliance", "flank_compliance", "principal_max",
            "body_spec"]
@@ -319,12 +320,21 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
     say = progress or (lambda msg: None)
     t = dict(timings or {})
     t0 = time.perf_counter()
-    K = assemble_stiffness(mesh.nodes, mesh.tets, spec.young, spec.poisson)
-    t["assembly"] = time.perf_counter() - t0
     fixed_nodes = np.unique(mesh.facets[support])
+    if mesh.hexes is None:
+        K = assemble_stiffness(mesh.nodes, mesh.tets, spec.young, spec.poisson)
+    else:                                  # solved on the serendipity hexahedra, loaded and read on the tetrahedra
+        T, hex_nodes = tet_interpolation(len(mesh.nodes), mesh.hexes, mesh.tets)
+        col = np.full(len(mesh.nodes), -1)
+        col[hex_nodes] = np.arange(len(hex_nodes))
+        K = assemble_hex20(mesh.nodes[hex_nodes], col[mesh.hexes], spec.young, spec.poisson)
+        fixed_nodes = col[np.intersect1d(fixed_nodes, hex_nodes)]
+    t["assembly"] = time.perf_counter() - t0
     fixed = (3 * fixed_nodes[:, None] + np.arange(3)).ravel()
     t0 = time.perf_counter()
     fact = factorize(K, fixed)
+    if mesh.hexes is not None:
+        fact = SubspaceFactorization(fact, T)
     t["factorisation"] = time.perf_counter() - t0
     say(f"assembled ({t['assembly']:.1f} s) and factorised with {fact.method} ({t['factorisation']:.1f} s)")
 
@@ -361,7 +371,7 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
                       shape=(len(Y), 3 * len(Y))) @ Pm
     P = None
     if not len(R):
-        S = sp.csr_matrix((0, K.shape[0]))
+        S = sp.csr_matrix((0, mesh.n_dofs))
     elif recovery == "nodal":              # observe the nodal stresses, interpolate them to the points after
         P, S = nodal_stress(mesh.nodes, mesh.tets, spec.young, spec.poisson, R)
     else:

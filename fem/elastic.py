@@ -34,7 +34,8 @@ import scipy.sparse as sp
 
 from ltca.fem.solver import Factorization, factorize
 
-__all__ = ["assemble_stiffness", "factorize", "Factorization", "rigid_body_modes", "p2_shape", "lame"]
+__all__ = ["assemble_stiffness", "factorize", "Factorization", "rigid_body_modes", "p2_shape", "lame", "node_pattern",
+           "blocks_to_csr"]
 
 EDGES = np.array([[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]])
 TRI_EDGES = np.array([[0, 1], [1, 2], [2, 0]])
@@ -135,20 +136,13 @@ def assemble_stiffness(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float)
     """
     nodes, tets = _check_mesh(nodes, tets, 10, "tets")
     lam, mu = lame(E, nu)
-    N = len(nodes)
     eye = np.eye(3)
-    # node-level pattern: one 3x3 block per coupled node pair; entries in layout [i, j, m]
     # elements sorted by lowest node: each chunk then scatters into a narrow band of blocks
     tets = tets[np.argsort(tets[:, :4].min(axis=1), kind="stable")]
-    t64 = tets.astype(np.int64)
-    chunks = range(0, len(tets), _CHUNK)
-    keys = np.concatenate([(t64[s:s + _CHUNK].T[:, None, :] * N + t64[s:s + _CHUNK].T[None, :, :]).ravel()
-                           for s in chunks])
-    pattern, where = np.unique(keys, return_inverse=True)
-    del keys
+    pattern, where = node_pattern(tets, len(nodes), _CHUNK)
     blocks = np.zeros((len(pattern), 9))
     pos = 0
-    for s in chunks:
+    for s in range(0, len(tets), _CHUNK):
         t = tets[s:s + _CHUNK]
         _, _, g, vol = _affine(nodes, t)
         dots = np.einsum("mck,mek->cem", g, g)
@@ -165,6 +159,37 @@ def assemble_stiffness(nodes: np.ndarray, tets: np.ndarray, E: float, nu: float)
             data = _Q @ H[:, kl, :]
             blocks[lo:hi, kl] += np.bincount(w, weights=data.ravel(), minlength=hi - lo)
         del H, data
+    return blocks_to_csr(pattern, blocks, len(nodes))
+
+
+def node_pattern(cells: np.ndarray, N: int, chunk: int) -> tuple[np.ndarray, np.ndarray]:
+    """The node-level sparsity of a stiffness: one 3x3 block per coupled node pair.
+
+    Parameters
+    ----------
+    cells : ndarray of int, (M, c)
+        Element nodes.
+    N : int
+        Nodes.
+    chunk : int
+        Elements per chunk of the assembly loop.
+
+    Returns
+    -------
+    pattern : ndarray of int64, (P,)
+        Sorted keys ``row_node * N + col_node`` of the blocks.
+    where : ndarray of int, (M c^2,)
+        The block of each element entry, chunk by chunk in the layout [i, j, m] (node i, node j, element m).
+    """
+    t64 = cells.astype(np.int64)
+    keys = np.concatenate([(t64[s:s + chunk].T[:, None, :] * N + t64[s:s + chunk].T[None, :, :]).ravel()
+                           for s in range(0, len(cells), chunk)])
+    return np.unique(keys, return_inverse=True)
+
+
+def blocks_to_csr(pattern: np.ndarray, blocks: np.ndarray, N: int) -> sp.csr_matrix:
+    """The (3N, 3N) CSR matrix of 3x3 node-pair ``blocks`` (P, 9), row-major, at the keys ``pattern``
+    (:func:`node_pattern`); dofs ``3 * node + component``."""
     rows, cols = np.divmod(pattern, N)
     indptr = np.searchsorted(rows, np.arange(N + 1)).astype(np.int64)
     idx_t = np.int32 if len(pattern) < 2**31 - 1 else np.int64

@@ -42,7 +42,7 @@ from typing import Any, Callable
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["Factorization", "factorize", "available_methods", "nested_dissection"]
+__all__ = ["Factorization", "SubspaceFactorization", "factorize", "available_methods", "nested_dissection"]
 
 _METHODS = ("auto", "pardiso", "pardiso-unsym", "cholmod", "cvxopt", "splu")
 _log = logging.getLogger(__name__)
@@ -177,6 +177,51 @@ class Factorization:
             self.release()
         except Exception:  # interpreter shutdown: nothing useful to do
             pass
+
+
+@dataclass
+class SubspaceFactorization:
+    """A factorisation of a stiffness on a subspace ``u = T v`` of the displacements, solving for full-size loads.
+
+    The body's stiffness in ``v`` (e.g. the serendipity hexahedra of :mod:`ltca.fem.serendipity`) is factorised by
+    ``inner``; loads and read-outs stay on the full dofs: ``u = T K_v^-1 T^T F``.
+
+    Attributes
+    ----------
+    inner : Factorization
+        Of the stiffness in v, (n_v, n_v).
+    T : scipy.sparse.csr_matrix, (n, n_v)
+        The full dofs of v.
+    """
+
+    inner: Factorization
+    T: sp.csr_matrix = field(repr=False)
+
+    @property
+    def method(self) -> str:
+        """The back-end of ``inner``."""
+        return self.inner.method
+
+    @property
+    def n(self) -> int:
+        """Full number of dofs."""
+        return self.T.shape[0]
+
+    def solve(self, F: Any, observe: sp.spmatrix | np.ndarray | None = None,
+              block: int | None = None) -> np.ndarray:
+        """Displacements for full-size loads, as :meth:`Factorization.solve` (same shapes and ``observe``)."""
+        if (F.shape if sp.issparse(F) else np.shape(F))[0] != self.n:
+            raise ValueError(f"F: shape {np.shape(F)} must be ({self.n},) or ({self.n}, k)")
+        Fv = self.T.T @ F
+        if observe is None:
+            return self.T @ self.inner.solve(Fv, block=block)
+        if observe.shape[1] != self.n:
+            raise ValueError(f"observe: shape {observe.shape} must be (r, {self.n})")
+        return self.inner.solve(Fv, observe=sp.csr_matrix(observe @ self.T), block=block)
+
+    def release(self) -> None:
+        """Free the back-end's factor memory now."""
+        self.inner.release()
 
 
 class _Gather:

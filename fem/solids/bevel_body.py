@@ -21,7 +21,8 @@ spiral twist:
 
 Each hexahedron is split into six tetrahedra along its main diagonal (Kuhn), which is conforming across
 neighbours; quadratic (10-node) tetrahedra get straight mid-edge nodes (the elements are subparametric,
-:mod:`ltca.fem.elastic`).  Facets (tri6, outward): ``flank_{k}_{concave|convex}``, ``top_{k}``, ``root``, ``toe``,
+:mod:`ltca.fem.elastic`). The hexahedra are kept too (``BodyMesh.hexes``): the body is solved on them as 20-node
+serendipity bricks, the tetrahedra carrying loads and read-outs (:mod:`ltca.fem.serendipity`).  Facets (tri6, outward): ``flank_{k}_{concave|convex}``, ``top_{k}``, ``root``, ``toe``,
 ``heel``, ``bore``.  Frame: the member's body frame of :mod:`ltca.geometry.bevel` (z along the axis, origin at the
 pitch apex), mm.  Meshing in a structured map instead of gmsh's unstructured mesher is deliberate: the bevel
 tooth is a topological cube, the map keeps element shape and grading under the spiral twist, and it runs in a
@@ -41,7 +42,7 @@ from .mesh_record import BodyMesh, outline_hash
 
 __all__ = ["BevelBodySpec", "build_bevel_body", "convex_shift", "blank_outline"]
 
-_VERSION = "bevel-mapped-3"        # 2: tooth rows graded towards the root (DEPTH_GRADING); 3: 1.5, not 2.2
+_VERSION = "bevel-mapped-4"        # 2: tooth rows graded towards the root (DEPTH_GRADING); 3: 1.5, not 2.2; 4: hexes
 
 
 @dataclass(frozen=True)
@@ -309,7 +310,8 @@ def build_bevel_body(spec: BevelBodySpec, cache_dir=None) -> BodyMesh:
         nxt += len(up)
     X = np.concatenate(nodes)
     hexes = [_hexes(rim_ids, True)] + [_hexes(tooth_ids[k], False) for k in range(nT)]
-    tets, parity = _kuhn(np.concatenate(hexes))
+    corners = np.concatenate(hexes)
+    tets, parity = _kuhn(corners)
     v = np.einsum("ij,ij->i", np.cross(X[tets[:, 1]] - X[tets[:, 0]], X[tets[:, 2]] - X[tets[:, 0]]),
                   X[tets[:, 3]] - X[tets[:, 0]]) * parity
     ref = np.sign(np.median(v))
@@ -337,7 +339,7 @@ def build_bevel_body(spec: BevelBodySpec, cache_dir=None) -> BodyMesh:
     for s0 in starts:
         covered[s0:s0 + ns] = True
     groups["root"] = _quad_tris(top.reshape(-1, K - 1, 2, 2)[~covered].reshape(-1, 2, 2))
-    mesh = _quadratic(X, tets, groups, key, time.perf_counter() - t0)
+    mesh = _quadratic(X, tets, groups, key, time.perf_counter() - t0, corners.reshape(-1, 8))
     store_cached(cache_dir, "bevel", mesh)
     return mesh
 
@@ -359,9 +361,13 @@ def _faces(ids2: np.ndarray, a0: int, a1: int, periodic: bool = False) -> np.nda
     return q.reshape(-1, 2, 2)
 
 
-def _quadratic(X: np.ndarray, tets: np.ndarray, groups: dict, key: str, seconds: float) -> BodyMesh:
-    """10-node tetrahedra and 6-node facets with straight mid-edge nodes; facets turned outward."""
+def _quadratic(X: np.ndarray, tets: np.ndarray, groups: dict, key: str, seconds: float,
+               corners: np.ndarray | None = None) -> BodyMesh:
+    """10-node tetrahedra and 6-node facets with straight mid-edge nodes; facets turned outward. With the
+    hexahedra's ``corners`` (H, 8) (corner ``4 i + 2 j + k``) of which ``tets`` is the Kuhn split, their 20-node
+    serendipity hexahedra too (:mod:`ltca.fem.serendipity`)."""
     from ltca.fem.elastic import EDGES, TRI_EDGES
+    from ltca.fem.serendipity import HEX_EDGES
     e = np.sort(tets[:, EDGES].reshape(-1, 2), 1)
     uniq, inv = np.unique(e, axis=0, return_inverse=True)
     mid = len(X) + inv.reshape(-1, 6)
@@ -383,7 +389,12 @@ def _quadratic(X: np.ndarray, tets: np.ndarray, groups: dict, key: str, seconds:
         m = np.searchsorted(code, ee[:, 0].astype(np.int64) * len(X) + ee[:, 1])
         facets[name] = np.concatenate([tri, len(X) + m.reshape(-1, 3)], 1)
     del centre
-    return BodyMesh(nodes, tets10, facets, key, seconds)
+    hexes = None
+    if corners is not None:
+        he = np.sort(corners[:, HEX_EDGES], axis=2)
+        m = np.searchsorted(code, he[..., 0].astype(np.int64) * len(X) + he[..., 1])
+        hexes = np.concatenate([corners, len(X) + m], 1)
+    return BodyMesh(nodes, tets10, facets, key, seconds, hexes)
 
 
 def _facet_owner(tets: np.ndarray):

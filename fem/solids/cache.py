@@ -26,7 +26,8 @@ def load_cached(cache_dir, prefix: str, key: str) -> BodyMesh | None:
         return None
     with np.load(path) as d:
         facets = {k[len("facet__"):]: d[k] for k in d.files if k.startswith("facet__")}
-        mesh = BodyMesh(d["nodes"], d["tets"], facets, key, time.perf_counter() - t0)
+        hexes = d["hexes"] if "hexes" in d.files else None
+        mesh = BodyMesh(d["nodes"], d["tets"], facets, key, time.perf_counter() - t0, hexes)
     log.info("mesh cache hit: %s (%d nodes, %d tets, %.2f s)", path, len(mesh.nodes), len(mesh.tets), mesh.seconds)
     return mesh
 
@@ -38,6 +39,7 @@ def store_cached(cache_dir, prefix: str, mesh: BodyMesh) -> None:
     path = Path(cache_dir) / f"{prefix}_{mesh.spec_hash}.npz"
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(f".tmp{os.getpid()}.npz")
-    np.savez(tmp, nodes=mesh.nodes, tets=mesh.tets, **{f"facet__{k}": v for k, v in mesh.facets.items()})
+    extra = {} if mesh.hexes is None else {"hexes": mesh.hexes}
+    np.savez(tmp, nodes=mesh.nodes, tets=mesh.tets, **extra, **{f"facet__{k}": v for k, v in mesh.facets.items()})
     os.replace(tmp, path)
     log.info("mesh cache stored: %s", path)

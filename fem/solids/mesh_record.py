@@ -42,6 +42,10 @@ class BodyMesh:
         The ``spec_hash`` of the spec that made it (the mesh cache's key).
     seconds : float
         Wall time spent building (or loading) the mesh, s.
+    hexes : ndarray, shape (H, 20), or None
+        A mapped body: the 20-node serendipity hexahedra whose Kuhn split (six tetrahedra each) ``tets`` is, over the
+        same nodes (order of :mod:`ltca.fem.serendipity`). The stiffness is then the hexahedra's and the tetrahedra
+        carry loads and read-outs. None: a tetrahedral mesh.
     """
 
     nodes: np.ndarray
@@ -49,6 +53,7 @@ class BodyMesh:
     facets: dict[str, np.ndarray]
     spec_hash: str
     seconds: float = field(default=0.0, compare=False)
+    hexes: np.ndarray | None = field(default=None, compare=False)
 
     @property
     def n_dofs(self) -> int:
