@@ -29,7 +29,7 @@ class BevelFidelity:
     """
     name: str = "default"
     grid: tuple[int, int] = (9, 13)
-    divisions: tuple[int, int, int, int, int, int] = (14, 10, 5, 3, 3, 16)
+    divisions: tuple[int, int, int, int, int, int] = (12, 8, 4, 3, 3, 16)
     depth: float = 0.5
     cells: tuple[int, int] = (33, 17)
     window: tuple[float, float] = (1.6, 1.0)
