@@ -36,7 +36,6 @@ Back-substitution (FZG C14 pinion body: 63k free dofs, 216 patch loads, 1476 obs
 from __future__ import annotations
 
 import logging
-import threading
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
@@ -92,12 +91,10 @@ class Factorization:
     _solve_free: Callable[[np.ndarray], np.ndarray] = field(repr=False)
     _release: Callable[[], None] | None = field(default=None, repr=False)
     _solve_sparse: Callable[[sp.csc_matrix], np.ndarray] | None = field(default=None, repr=False)
-    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False, compare=False)
 
     def solve(self, F: Any, observe: sp.spmatrix | np.ndarray | None = None,
               block: int | None = None) -> np.ndarray:
-        """Displacements for full-size loads; calls from several threads take turns (a back-end's factor and its
-        work memory serve one solve at a time).
+        """Displacements for full-size loads.
 
         Parameters
         ----------
@@ -116,10 +113,6 @@ class Factorization:
         ndarray, (n,) or (n, k), or (r,) or (r, k) with `observe`
             Displacements [mm], exactly 0 on fixed dofs.
         """
-        with self._lock:
-            return self._solve(F, observe, block)
-
-    def _solve(self, F: Any, observe: sp.spmatrix | np.ndarray | None, block: int | None) -> np.ndarray:
         vector = (not sp.issparse(F)) and np.ndim(F) == 1
         if self._solve_sparse is not None and not vector and not sp.issparse(F):
             F = sp.csc_matrix(np.asarray(F, dtype=float))   # loads on a few surface nodes: the sparse solve

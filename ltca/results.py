@@ -25,8 +25,6 @@ cylindrical pairs).
 from __future__ import annotations
 
 import hashlib
-import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -87,7 +85,6 @@ class LoadedResult:
     timings: dict
     _state: Any = field(default=None, repr=False, compare=False)
     _writer: Any = field(default=None, repr=False, compare=False)
-    _paraview: Any = field(default=None, repr=False, compare=False)
 
     @property
     def converged(self) -> bool:
@@ -151,24 +148,9 @@ def write_into(result: LoadedResult, out: Path, *, report: bool = True, paraview
         case_file = str(Path(out) / "case.toml")
         write_bytes_atomic(case_file, result.case.to_toml().encode())
     with staging(out) as stage:
-        # the ParaView series (FE fields of the bodies: back-substitutions, stresses, compressed VTU) is written in a
-        # second thread beside the kind's other files (plots and report: matplotlib stays in this thread)
-        with ThreadPoolExecutor(1) as pool:
-            series = None
-            if paraview_steps and result._paraview is not None:
-                series = pool.submit(_timed, result._paraview, result, stage, paraview_steps)
-            result._writer(result, head, stage, case_file, report, paraview_steps)
-            if series is not None:
-                entry, seconds = series.result()
-                head["paraview"] = entry
-                head["timings_s"]["paraview"] = round(seconds, 3)
+        result._writer(result, head, stage, case_file, report, paraview_steps)
     write_json_atomic(Path(out) / "summary.json", head)
     return head
-
-
-def _timed(fn, *args):
-    t0 = time.perf_counter()
-    return fn(*args), time.perf_counter() - t0
 
 
 def save_result(result: LoadedResult, out: str | Path, *, report: bool = True, paraview_steps: int = 10) -> Path:

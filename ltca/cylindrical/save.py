@@ -12,14 +12,13 @@ from ltca.geometry.pair import rotation_z
 from .analysis import CylindricalRun
 from .loaded import weights_of
 
-__all__ = ["write_outputs", "paraview_series"]
+__all__ = ["write_outputs"]
 
 
 def write_outputs(run: CylindricalRun, head: dict, stage: Path, case_file: str, report: bool = True,
                   paraview_steps: int = 10) -> None:
-    """Write every file of the run but summary.json and the ParaView series (:func:`paraview_series`) into
-    ``stage``; ``head`` (the summary to be written) gains what the writers find: ``iso6336``, ``striping_index``
-    and their timings.
+    """Write every file of the run but summary.json into ``stage``; ``head`` (the summary to be written) gains
+    what the writers find: ``paraview``, ``iso6336``, ``striping_index`` and their timings.
 
     Parameters
     ----------
@@ -31,7 +30,7 @@ def write_outputs(run: CylindricalRun, head: dict, stage: Path, case_file: str, 
     report : bool
         Write report.html and its plot.
     paraview_steps : int
-        Positions of the first torque in the ParaView series (0: none), which the report links to.
+        Positions of the first torque in the ParaView series (0: none).
     """
     from ..outputs import write_netcdf_atomic
     from .report import plot_all, write_vtu
@@ -45,21 +44,20 @@ def write_outputs(run: CylindricalRun, head: dict, stage: Path, case_file: str, 
     W1, W2 = weights_of(lm, r)
     write_vtu(stage / "pinion_loaded.vtu", lm.body1, W1.T @ r.force, rotation_z(model.phi_pitch - r.roll))
     write_vtu(stage / "gear_loaded.vtu", lm.body2, W2.T @ r.force, model.pair.gear_frame(model.phi_pitch - r.roll))
+    pv = None
+    if paraview_steps:
+        from .paraview import write_series
+        t0 = time.perf_counter()
+        pv = write_series(stage, lm, first, case.torques[0], steps=paraview_steps)
+        head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
+        head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": case.torques[0] * 1e-3,
+                           "roll_deg": pv["roll_deg"], "flank_peak_mpa": pv["flank_peak_mpa"]}
     if report:
         from .html_report import write_run_report
         t0 = time.perf_counter()
         extra = write_run_report(stage, lm, case_file, head, run.dataset, run.plan.positions,
                                  run.plan.fidelity_name, run.unconverged, head["timings_s"],
-                                 "paraview.pvd" if paraview_steps else None)
+                                 "paraview.pvd" if pv else None)
         head["timings_s"]["report"] = round(time.perf_counter() - t0, 3)
         head["iso6336"] = extra["comparisons"]
         head["striping_index"] = {f"{t:g}": round(v, 4) for t, v in extra["striping"].items()}
-
-
-def paraview_series(run: CylindricalRun, stage: Path, steps: int) -> dict:
-    """The ParaView series of the first torque (``steps`` positions) into ``stage``: its entry of the summary."""
-    from .paraview import write_series
-    case = run.plan.case
-    pv = write_series(stage, run.lm, run.results[0], case.torques[0], steps=steps)
-    return {"pvd": "paraview.pvd", "torque_nm": case.torques[0] * 1e-3, "roll_deg": pv["roll_deg"],
-            "flank_peak_mpa": pv["flank_peak_mpa"]}

@@ -1,6 +1,7 @@
 """The bevel kind in the one core (:mod:`ltca.core`): its plan, execute, result and write functions."""
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 from ..bevel import analysis
@@ -23,7 +24,7 @@ def _result(case: Case, run: analysis.BevelRun) -> LoadedResult:
         head.update(positions_computed=run.computed, positions_taken_over=run.taken_over)
     run.plotdata = plotdata
     return LoadedResult(case=case, dataset=ds, summary=head, figures=tuple(figures_from(r) for r in head["torques"]),
-                        timings=dict(run.timings), _state=run, _writer=_write, _paraview=_paraview)
+                        timings=dict(run.timings), _state=run, _writer=_write)
 
 
 def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
@@ -31,18 +32,19 @@ def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report
     run = result._state
     head["plots"] = write_files(stage, run.plan.case, run.pair, result.dataset, run.plotdata, run.runs,
                                 run.plan.torques_nm)
+    if paraview_steps:
+        from ..bevel.paraview import write_series
+        t0 = time.perf_counter()
+        T = run.plan.torques_nm[0]
+        rr = run.runs["concave" if T > 0 else "convex"]
+        pv = write_series(stage, rr["lm"], rr[T], result.dataset.cycle.values, T, steps=paraview_steps,
+                          name=run.plan.case.name)
+        head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
+        head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": T, "cycle": pv["cycle"],
+                            "flank_peak_mpa": pv["flank_peak_mpa"]}
     if report:
         from ..bevel.html_report import write_bevel_report
         write_bevel_report(stage, run.plan.case, run.pair, head, case_file)
-
-
-def _paraview(result: LoadedResult, stage: Path, steps: int) -> dict:
-    from ..bevel.paraview import write_series
-    run = result._state
-    T = run.plan.torques_nm[0]
-    rr = run.runs["concave" if T > 0 else "convex"]
-    pv = write_series(stage, rr["lm"], rr[T], result.dataset.cycle.values, T, steps=steps, name=run.plan.case.name)
-    return {"pvd": "paraview.pvd", "torque_nm": T, "cycle": pv["cycle"], "flank_peak_mpa": pv["flank_peak_mpa"]}
 
 
 def _bodies(run: analysis.BevelRun) -> tuple:

@@ -21,17 +21,12 @@ def _result(case: Case, run: analysis.CylindricalRun) -> LoadedResult:
         head = {**head, "positions_computed": run.computed, "positions_taken_over": run.taken_over}
     return LoadedResult(case=case, dataset=run.dataset, summary=head,
                         figures=tuple(figures_from(r) for r in head["torques"]), timings=dict(head["timings_s"]),
-                        _state=run, _writer=_write, _paraview=_paraview)
+                        _state=run, _writer=_write)
 
 
 def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
     from ..cylindrical.save import write_outputs
     write_outputs(result._state, head, stage, case_file, report=report, paraview_steps=paraview_steps)
-
-
-def _paraview(result: LoadedResult, stage: Path, steps: int) -> dict:
-    from ..cylindrical.save import paraview_series
-    return paraview_series(result._state, stage, steps)
 
 
 ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True,

@@ -6,6 +6,7 @@ Root stresses: ``pinion`` is the satellite, ``gear`` the wheel.
 """
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 import numpy as np
@@ -86,23 +87,22 @@ def _result(case: Case, run: prun.PlanetaryRun) -> LoadedResult:
     head["converged"] = all(r["converged"] for r in records)
     head["max_torque_residual"] = max(r["max_torque_residual"] for r in records)
     return LoadedResult(case=case, dataset=ds, summary=head, figures=tuple(figures_from(r) for r in records),
-                        timings=dict(run.timings), _state=run, _writer=_write, _paraview=_paraview)
+                        timings=dict(run.timings), _state=run, _writer=_write)
 
 
 def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
     run = result._state
     prun.write_files(run, stage, result.dataset)
-
-
-def _paraview(result: LoadedResult, stage: Path, steps: int) -> dict:
-    from ..cylindrical.paraview import write_series
-    run = result._state
-    T = run.torques[0]
-    pv = write_series(stage, run.lm, run.results[0], T, steps=steps,
-                      comment=f"{run.plan.case.name}, satellite torque {T * 1e-3:g} N m, drive direction; "
-                              "timestep = satellite angle, deg")
-    return {"pvd": "paraview.pvd", "torque_nm": T * 1e-3, "position_deg": pv["roll_deg"],
-            "flank_peak_mpa": pv["flank_peak_mpa"]}
+    if paraview_steps:
+        from ..cylindrical.paraview import write_series
+        t0 = time.perf_counter()
+        T = run.torques[0]
+        pv = write_series(stage, run.lm, run.results[0], T, steps=paraview_steps,
+                          comment=f"{run.plan.case.name}, satellite torque {T * 1e-3:g} N m, drive direction; "
+                                  "timestep = satellite angle, deg")
+        head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
+        head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": T * 1e-3, "position_deg": pv["roll_deg"],
+                            "flank_peak_mpa": pv["flank_peak_mpa"]}
 
 
 ANALYSIS = Analysis(plan=_plan, execute=prun.execute, result=_result, write=_write, resumable=True,
