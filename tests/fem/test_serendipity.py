@@ -6,7 +6,7 @@ import pytest
 import scipy.sparse as sp
 
 from ltca.fem.elastic import assemble_stiffness, rigid_body_modes
-from ltca.fem.serendipity import HEX_EDGES, assemble_hex20, hex20_shape, tet_interpolation
+from ltca.fem.serendipity import assemble_hex20, hex20_shape, tet_interpolation
 from ltca.fem.solids.bevel_body import _hexes, _kuhn, _quadratic
 
 E, NU = 210e3, 0.3
@@ -24,16 +24,11 @@ def _box(nx, ny, nz, size=(1.0, 1.0, 1.0), warp=0.0):
     v = np.einsum("ij,ij->i", np.cross(X[tets[:, 1]] - X[tets[:, 0]], X[tets[:, 2]] - X[tets[:, 0]]),
                   X[tets[:, 3]] - X[tets[:, 0]])
     tets[v < 0] = tets[v < 0][:, [0, 2, 1, 3]]
-    mesh = _quadratic(X, tets, {}, "box", 0.0)
-    c8 = corners.reshape(-1, 8)
-    e = np.sort(mesh.tets[:, :4][:, [[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]]].reshape(-1, 2), 1)
-    lookup = dict(zip(map(tuple, e), mesh.tets[:, 4:].reshape(-1)))
-    mids = np.array([[lookup[tuple(sorted((h[a], h[b])))] for a, b in HEX_EDGES] for h in c8])
-    return mesh, np.concatenate([c8, mids], 1)
+    mesh = _quadratic(X, tets, {}, "box", 0.0, corners.reshape(-1, 8))
+    return mesh, mesh.hexes
 
 
 def test_shape_functions_are_a_partition_of_unity_and_nodal():
-    _, hexes = _box(1, 1, 1)
     xi = np.concatenate([2.0 * np.array([[(a >> 2) & 1, (a >> 1) & 1, a & 1] for a in range(8)]) - 1,
                          np.zeros((1, 3))])
     N, dN = hex20_shape(np.random.default_rng(0).uniform(-1, 1, (50, 3)))
