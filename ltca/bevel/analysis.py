@@ -5,7 +5,6 @@ coast flank for negative pinion torques); the results and files are :mod:`ltca.b
 from __future__ import annotations
 
 import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,7 +20,7 @@ from ..validation import DesignError
 from .case import BevelCase, case_blank, check_bevel_torques
 from .limits import BevelDesignLimit, working_values
 from .loaded import BevelPosition, solve_position
-from .loaded_model import BevelBodies, BevelFidelity, gear_body, loaded_model, prepare_bodies
+from .loaded_model import BevelBodies, BevelFidelity, loaded_model, prepare_bodies
 
 __all__ = ["build_pair", "synthesis_error", "cycle_positions", "analyse_torque", "BevelPlan", "BevelRun", "plan", "execute"]
 
@@ -34,10 +33,7 @@ def build_pair(case: BevelCase) -> BevelPair:
     bl = case_blank(case)
     if case.cuts:
         return BevelPair(bl, case.cuts["gear"], case.cuts["pinion"])
-    return _synthesised(case, bl, standard_gear_cut(bl))
-
-
-def _synthesised(case: BevelCase, bl, gear) -> BevelPair:
+    gear = standard_gear_cut(bl)
     pin, _ = synthesize_pinion(bl, gear, case.targets, blank_offset=case.blank_offset)
     return BevelPair(bl, gear, pin)
 
@@ -147,21 +143,11 @@ def execute(p: BevelPlan, progress=None, cache: str | None = None, store=None) -
     case = p.case
     timings = {}
     t0 = time.perf_counter()
-    first = "concave" if p.torques_nm[0] > 0 else "convex"
-    with ThreadPoolExecutor(1) as pool:
-        # the first side's gear body needs only the blank and the gear's cut: computed in a second thread while the
-        # pinion is synthesised (a failed synthesis waits for it before its error)
-        early = None
-        if not case.cuts:
-            bl = case_blank(case)
-            gear = standard_gear_cut(bl)
-            early = pool.submit(gear_body, BevelPair(bl, gear, None), first, p.fid, case.young, case.poisson, cache,
-                                progress, case.mounting)
-        try:
-            pair = build_pair(case) if early is None else _synthesised(case, bl, gear)
-        except (ContactError, MeshingError, ValueError) as exc:
-            raise synthesis_error(case, exc, getattr(case, "file", None)) from None
-        timings["synthesis"] = time.perf_counter() - t0
+    try:
+        pair = build_pair(case)
+    except (ContactError, MeshingError, ValueError) as exc:
+        raise synthesis_error(case, exc, getattr(case, "file", None)) from None
+    timings["synthesis"] = time.perf_counter() - t0
     bodies: dict[str, BevelBodies] = {}
     runs, lines = {}, []
     for it, T in enumerate(p.torques_nm):
@@ -169,9 +155,8 @@ def execute(p: BevelPlan, progress=None, cache: str | None = None, store=None) -
         if side not in bodies:
             t1 = time.perf_counter()
             try:
-                g = early.result() if early is not None and side == first else None
                 bodies[side] = prepare_bodies(pair, side, p.fid, case.young, case.poisson, cache, progress,
-                                              mounting=case.mounting, gear=g)
+                                              mounting=case.mounting)
             except MeshingError as exc:        # a flank the body's grid cannot reach: the design limits
                 raise synthesis_error(case, exc, getattr(case, "file", None)) from None
             timings[f"compliance_{FLANK[side]}"] = time.perf_counter() - t1

@@ -21,7 +21,7 @@ from ltca.geometry.bevel.tca import Assembly, BevelPair
 
 from .model import LOADED, MESHED, BevelBodies, BevelFidelity, BevelLoadedModel, BevelMounting
 
-__all__ = ["gear_body", "BevelFidelity", "BevelMounting", "BevelBodies", "BevelLoadedModel", "prepare_bodies", "member_flanks",
+__all__ = ["BevelFidelity", "BevelMounting", "BevelBodies", "BevelLoadedModel", "prepare_bodies", "member_flanks",
            "loaded_model", "body_t", "LOADED", "MESHED", "BODY_GRID", "body_grid_offsets", "body_grid_flanks"]
 
 log = logging.getLogger(__name__)
@@ -78,30 +78,17 @@ def _member(pair: BevelPair, member: str, side: str, fid: BevelFidelity, E: floa
     return bevel_compliance(fl["concave"], fl["convex"], mb.z, off, shift, spec, cache_dir, say), off
 
 
-def gear_body(pair: BevelPair, pinion_side: str, fid: BevelFidelity = BevelFidelity(), young: float = 206000.0,
-              poisson: float = 0.3, cache_dir=None, progress=None,
-              mounting: BevelMounting = BevelMounting()) -> tuple:
-    """The gear member's compliance for the flank pair with the pinion ``pinion_side`` loaded, and its grid's root
-    offset (mm): what :func:`prepare_bodies` takes as ``gear``. It reads only the blank and the gear's cut of
-    ``pair`` (the pinion may be None: its synthesis can run meanwhile)."""
-    gear_side = "convex" if pinion_side == "concave" else "concave"
-    return _member(pair, "gear", gear_side, fid, young, poisson, mounting.supports(pair.blank)["gear"], cache_dir,
-                   progress or (lambda msg: None))
-
-
 def prepare_bodies(pair: BevelPair, pinion_side: str, fid: BevelFidelity = BevelFidelity(), young: float = 206000.0,
                    poisson: float = 0.3, cache_dir=None, progress=None,
-                   mounting: BevelMounting = BevelMounting(), gear=None) -> BevelBodies:
+                   mounting: BevelMounting = BevelMounting()) -> BevelBodies:
     """Both members' compliance for the flank pair with the pinion ``pinion_side`` loaded, each body down to its
-    ``mounting`` (the pinion's shaft seat, the gear's back face); ``gear``: the gear member's (:func:`gear_body`),
-    computed here when None."""
+    ``mounting`` (the pinion's shaft seat, the gear's back face)."""
     say = progress or (lambda msg: None)
     t0 = time.perf_counter()
+    gear_side = "convex" if pinion_side == "concave" else "concave"
     sup = mounting.supports(pair.blank)
     b1, off1 = _member(pair, "pinion", pinion_side, fid, young, poisson, sup["pinion"], cache_dir, say)
-    if gear is None:
-        gear = gear_body(pair, pinion_side, fid, young, poisson, cache_dir, say, mounting)
-    b2, off2 = gear
+    b2, off2 = _member(pair, "gear", gear_side, fid, young, poisson, sup["gear"], cache_dir, say)
     return BevelBodies(pinion_side, b1, b2, off1, off2, fid, young, poisson, mounting,
                        {"compliance": time.perf_counter() - t0})
 
