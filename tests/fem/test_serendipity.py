@@ -122,3 +122,12 @@ def test_cantilever_tip_deflection_against_beam_theory():
     w_tet, w_hex = tip_deflection(K_tet), tip_deflection(K_hex, T)
     assert abs(w_hex / exact - 1) < 0.025          # -2.0 %; 40 x 4 x 4 hexahedra: -0.79 % (3D end effects)
     assert abs(w_hex / exact - 1) < abs(w_tet / exact - 1)
+
+
+def test_the_mesh_cache_keeps_the_hexahedra(tmp_path):
+    """A cached mapped body comes back with its hexahedra (without them it would be solved on the tetrahedra)."""
+    from ltca.fem.solids.cache import load_cached, store_cached
+    mesh, hexes = _box(2, 1, 1)
+    store_cached(tmp_path, "box", mesh)
+    back = load_cached(tmp_path, "box", mesh.spec_hash)
+    assert back is not None and back.hexes is not None and np.array_equal(back.hexes, hexes)
