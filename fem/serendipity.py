@@ -36,7 +36,8 @@ _CORNER = np.array([[(a >> 2) & 1, (a >> 1) & 1, a & 1] for a in range(8)])
 #: corner pairs (8 + e is the mid-edge node of edge e): along i, then j, then k
 HEX_EDGES = np.array([(a, a | bit) for bit in (4, 2, 1) for a in range(8) if not a & bit])
 _XI = np.concatenate([2.0 * _CORNER - 1, (2.0 * _CORNER[HEX_EDGES[:, 0]] - 1 + 2.0 * _CORNER[HEX_EDGES[:, 1]] - 1) / 2])
-_CHUNK = 2000   # hexahedra per assembly chunk: about 100 MB of work arrays
+_CHUNK = 2000   # hexahedra per chunk of the gradient work arrays (about 100 MB); the 3 x 3 x 400 products of every
+                # element are kept whole (29 kB a hexahedron) and summed into the blocks once
 
 
 def hex20_shape(xi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -115,7 +116,6 @@ def assemble_hex20(nodes: np.ndarray, hexes: np.ndarray, E: float, nu: float) ->
     P, W = _gauss3()
     _, dN = hex20_shape(P)                                 # (27, 20, 3)
     _, dL = _trilinear(P)                                  # (27, 8, 3)
-    hexes = hexes[np.argsort(hexes[:, :8].min(axis=1), kind="stable")]
     pattern, where = node_pattern(hexes, len(nodes), _CHUNK)
     data = np.empty((3, 3, len(where)))                  # M[k, l] of every element entry, in the layout of where
     pos = 0
@@ -201,7 +201,7 @@ def tet_interpolation(n_nodes: int, hexes: np.ndarray, tets: np.ndarray) -> tupl
         rows.append(centre), cols.append(hexes[:, local]), vals.append(np.full(len(hexes), -0.25 if local < 8 else 0.25))
     r, c, w = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
     # a face shared by two hexahedra gives its diagonal's row twice, with the same weights: keep one
-    key, once = np.unique(r.astype(np.int64) * n_nodes + c, return_index=True)
+    _, once = np.unique(r.astype(np.int64) * n_nodes + c, return_index=True)
     r, c, w = r[once], c[once], w[once]
     hex_nodes = np.unique(hexes)
     col = np.full(n_nodes, -1)

@@ -22,7 +22,8 @@ spiral twist:
 Each hexahedron is split into six tetrahedra along its main diagonal (Kuhn), which is conforming across
 neighbours; quadratic (10-node) tetrahedra get straight mid-edge nodes (the elements are subparametric,
 :mod:`ltca.fem.elastic`). The hexahedra are kept too (``BodyMesh.hexes``): the body is solved on them as 20-node
-serendipity bricks, the tetrahedra carrying loads and read-outs (:mod:`ltca.fem.serendipity`).  Facets (tri6, outward): ``flank_{k}_{concave|convex}``, ``top_{k}``, ``root``, ``toe``,
+serendipity bricks, the tetrahedra carrying loads and read-outs (:mod:`ltca.fem.serendipity`).
+Facets (tri6, outward): ``flank_{k}_{concave|convex}``, ``top_{k}``, ``root``, ``toe``,
 ``heel``, ``bore``.  Frame: the member's body frame of :mod:`ltca.geometry.bevel` (z along the axis, origin at the
 pitch apex), mm.  Meshing in a structured map instead of gmsh's unstructured mesher is deliberate: the bevel
 tooth is a topological cube, the map keeps element shape and grading under the spiral twist, and it runs in a
@@ -42,7 +43,7 @@ from .mesh_record import BodyMesh, outline_hash
 
 __all__ = ["BevelBodySpec", "build_bevel_body", "convex_shift", "blank_outline"]
 
-_VERSION = "bevel-mapped-4"        # 2: tooth rows graded towards the root (DEPTH_GRADING); 3: 1.5, not 2.2; 4: hexes
+_VERSION = "bevel-mapped-4"        # the mesh recipe (the cache key): tooth rows graded by DEPTH_GRADING, hexahedra kept
 
 
 @dataclass(frozen=True)
