@@ -230,9 +230,10 @@ class HeadCutter:
         s = s0 + u
         rho_s, z_s = self.point_radius + sg * s * sa, -s * ca
         straight = rf == 0.0 or self.part == "straight"
-        if straight or (self.part == "whole" and not np.any(u < 0.0)):
-            return CutterProfile(rho_s, z_s, np.full(u.shape, -sg * ca), np.full(u.shape, -sa),
-                                 np.full(u.shape, sg * sa), np.full(u.shape, -ca))
+        if straight or (self.part == "whole" and not (u < 0.0).any()):
+            normal_tangent = np.empty((4,) + u.shape)            # n_rho, n_z, d_rho, d_z: constant
+            normal_tangent.reshape(4, -1)[:] = self._straight_directions
+            return CutterProfile(rho_s, z_s, *normal_tangent)
         # edge arc: phi = alpha - u / r_f, point = centre - r_f n (n = work normal)
         phi = a - u / rf if self.part == "arc" else np.minimum(np.maximum(a - u / rf, a), 0.5 * np.pi)
         cos_phi, sin_phi = np.cos(phi), np.sin(phi)
@@ -259,6 +260,7 @@ class HeadCutter:
             sa, ca = np.sin(a), np.cos(a)
             c = (a, sg, rf, sa, ca, self.s0, self.point_radius - sg * rf * (1.0 - sa) / ca, self.u_min)
             object.__setattr__(self, "_straight", c)
+            object.__setattr__(self, "_straight_directions", np.array([[-sg * ca], [-sa], [sg * sa], [-ca]]))
         return c
 
     def _chain_profile(self, u: np.ndarray) -> CutterProfile:

@@ -31,7 +31,7 @@ import numpy as np
 
 from .blank import BevelBlank
 from .machine import FlankCut, MemberCut
-from .synthesis import FlankTarget, local_synthesis
+from .synthesis import FlankTarget, _synthesis_at, mean_contact
 from .tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, TCAResult, contact_path, tca
 
 __all__ = ["path_line", "cycle_metrics", "control_point_design", "synthesize_flank", "synthesize_pinion"]
@@ -125,12 +125,16 @@ def control_point_design(blank: BevelBlank, gear: MemberCut, pinion_side: str, t
     if tol_arcsec <= 0:
         raise ValueError(f"tol_arcsec = {tol_arcsec!r} is outside the allowed range (0, inf)")
 
+    if pinion_side not in ("concave", "convex"):
+        raise ValueError(f"pinion_side = {pinion_side!r}: allowed 'concave' or 'convex'")
+    gear_side = "convex" if pinion_side == "concave" else "concave"
+    mc = mean_contact(blank, gear.flank(gear_side))                 # M0 is the gear's: the same at every step
     last = {}
 
     def evaluate(cd):
         tg, c = (replace(target, major_axis=cd[0]), start[0]) if fixed else (target, cd[0])
-        fc, info = local_synthesis(blank, gear, pinion_side, tg, blank_offset, (c, cd[1]),
-                                   guess=last.get("fc", guess))
+        fc, info = _synthesis_at(blank, mc, pinion_side, tg, blank_offset, (c, cd[1]), None,
+                                 last.get("fc", guess), 1e-12)
         last["fc"] = fc
         phi1, _, te, stops = contact_path(_pair(blank, gear, fc), pinion_side, Assembly(), steps_per_cycle=4,
                                           max_cycles=0.5)

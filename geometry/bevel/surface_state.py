@@ -33,9 +33,14 @@ class SurfaceState:
 
 def _vectors(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
     """(..., 3) vectors of broadcast components (np.stack without its per-call overhead; the same values)."""
-    sx, sy, sz = np.shape(x), np.shape(y), np.shape(z)
-    shape = sx if sx == sy == sz else np.broadcast_shapes(sx, sy, sz)
-    out = np.empty(shape + (3,), np.result_type(x, y, z))
+    try:                                           # arrays or numpy scalars of one shape and type: the usual case
+        same = x.shape == y.shape == z.shape and x.dtype == y.dtype == z.dtype
+    except AttributeError:
+        same = False
+    if same:
+        out = np.empty(x.shape + (3,), x.dtype)
+    else:
+        out = np.empty(np.broadcast_shapes(np.shape(x), np.shape(y), np.shape(z)) + (3,), np.result_type(x, y, z))
     out[..., 0], out[..., 1], out[..., 2] = x, y, z
     return out
 
@@ -81,11 +86,10 @@ def work_state(ms, d: np.ndarray, r_m: np.ndarray, n_m: np.ndarray, f: np.ndarra
     """The state of generated points given their machine-frame position ``r_m``, normal ``n_m``, offset ``d`` from
     the work origin (..., 3), the meshing function ``f`` and the work roll ``phi``: axial position Z and radius rho
     about the work axis, and with ``with_work`` the point and normal in the work's own frame."""
-    k = ms.work_axis
+    _, k, _, B = ms._frame()
     Z = d @ k
     rho = np.sqrt(np.maximum(np.einsum("...i,...i", d, d) - Z ** 2, 0.0))
     if with_work:
-        B = ms.work_basis
         c, s = np.cos(-phi), np.sin(-phi)
         r_w, n_w = _rotz_cs(d @ B, c, s), _rotz_cs(n_m @ B, c, s)
     else:

@@ -238,6 +238,7 @@ def contact_path(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = 
 
     h = np.array([1e-6, 1e-8, 1e-8, 1e-6, 1e-8, 1e-8, 1e-8])
     steps = np.diag(h)
+    angles = np.array([1, 2, 4, 5, 6])                             # the unknowns in rad: their steps are capped
 
     def newton(X, phi1):
         # Levenberg-Marquardt: damping keeps steps small along the (near) null direction of line contact
@@ -245,7 +246,7 @@ def contact_path(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = 
         nF = _norm(F)
         mu = 1e-4
         for _ in range(60):
-            if np.max(np.abs(F)) < 1e-10:
+            if np.abs(F).max() < 1e-10:
                 return X, True
             Xp = X[None, :] + steps
             J = (residual(Xp, phi1) - F).T / h
@@ -253,14 +254,14 @@ def contact_path(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = 
             g = J.T @ F
             while True:
                 dx = -np.linalg.solve(A + mu * np.diag(np.diag(A) + 1e-12), g)
-                dx *= min(1.0, 0.1 / max(np.max(np.abs(dx[[1, 2, 4, 5, 6]])), 1e-300))
+                dx *= min(1.0, 0.1 / max(np.abs(dx[angles]).max(), 1e-300))
                 Fn = residual(X + dx, phi1)
                 if _norm(Fn) < nF or mu > 1e8:
                     break
                 mu *= 10.0
             X, F, nF = X + dx, Fn, _norm(Fn)
             mu = max(mu * 0.1, 1e-12)
-        return X, bool(np.max(np.abs(F)) < 1e-8)
+        return X, bool(np.abs(F).max() < 1e-8)
 
     # reference position: gear mean point, phi1 = 0
     mb2, mb1 = bl.gear, bl.pinion
