@@ -45,6 +45,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .surface_state import _vectors
+
 __all__ = ["HeadCutter", "CutterProfile"]
 
 _INF = float("inf")
@@ -223,30 +225,43 @@ class HeadCutter:
         u = np.asarray(u, dtype=float)
         if self.general:
             return self._chain_profile(u)
-        a, sg, rf = self.blade_angle, self.sigma, self.edge_radius
-        sa, ca = np.sin(a), np.cos(a)
+        a, sg, rf, sa, ca, s0, rho_c, u_min = self._straight_constants()
         # straight part
-        s = self.s0 + u
+        s = s0 + u
         rho_s, z_s = self.point_radius + sg * s * sa, -s * ca
-        if rf == 0.0 or self.part == "straight":
-            one = np.ones_like(u)
-            return CutterProfile(rho_s, z_s, -sg * ca * one, -sa * one, sg * sa * one, -ca * one)
+        straight = rf == 0.0 or self.part == "straight"
+        if straight or (self.part == "whole" and not (u < 0.0).any()):
+            normal_tangent = np.empty((4,) + u.shape)            # n_rho, n_z, d_rho, d_z: constant
+            normal_tangent.reshape(4, -1)[:] = self._straight_directions
+            return CutterProfile(rho_s, z_s, *normal_tangent)
         # edge arc: phi = alpha - u / r_f, point = centre - r_f n (n = work normal)
-        rho_c = self.point_radius - sg * rf * (1.0 - sa) / ca
-        phi = a - u / rf if self.part == "arc" else np.clip(a - u / rf, a, 0.5 * np.pi)
-        n_rho_a, n_z_a = -sg * np.cos(phi), -np.sin(phi)
+        phi = a - u / rf if self.part == "arc" else np.minimum(np.maximum(a - u / rf, a), 0.5 * np.pi)
+        cos_phi, sin_phi = np.cos(phi), np.sin(phi)
+        n_rho_a, n_z_a = -sg * cos_phi, -sin_phi
         rho_a, z_a = rho_c - rf * n_rho_a, -rf - rf * n_z_a
         # tangent d/du of the arc = -(1/rf) d/dphi (centre - rf n) = -(dn/dphi) = (-sg sin phi, cos phi)*(-1)
-        d_rho_a, d_z_a = sg * np.sin(phi), -np.cos(phi)
+        d_rho_a, d_z_a = sg * sin_phi, -cos_phi
         if self.part == "arc":
             return CutterProfile(rho_a, z_a, n_rho_a, n_z_a, d_rho_a, d_z_a)
         # beyond the tip: continue along the tip plane (normal -e_z)
-        beyond = u < self.u_min
-        rho_a = np.where(beyond, rho_c + sg * (u - self.u_min), rho_a)
+        beyond = u < u_min
+        rho_a = np.where(beyond, rho_c + sg * (u - u_min), rho_a)
         on_arc = u < 0.0
         return CutterProfile(np.where(on_arc, rho_a, rho_s), np.where(on_arc, z_a, z_s),
                              np.where(on_arc, n_rho_a, -sg * ca), np.where(on_arc, n_z_a, -sa),
                              np.where(on_arc, d_rho_a, sg * sa), np.where(on_arc, d_z_a, -ca))
+
+    def _straight_constants(self) -> tuple[float, ...]:
+        """(alpha, sigma, r_f, sin alpha, cos alpha, s0, edge-centre radius, u_min) of the straight blade, computed
+        once: :meth:`profile` runs at every evaluation of a generated surface."""
+        c = self.__dict__.get("_straight")
+        if c is None:
+            a, sg, rf = self.blade_angle, self.sigma, self.edge_radius
+            sa, ca = np.sin(a), np.cos(a)
+            c = (a, sg, rf, sa, ca, self.s0, self.point_radius - sg * rf * (1.0 - sa) / ca, self.u_min)
+            object.__setattr__(self, "_straight", c)
+            object.__setattr__(self, "_straight_directions", np.array([[-sg * ca], [-sa], [sg * sa], [-ca]]))
+        return c
 
     def _chain_profile(self, u: np.ndarray) -> CutterProfile:
         """:meth:`profile` of a blade chain (curved blade, toprem, flankrem; module docstring)."""
@@ -291,9 +306,7 @@ class HeadCutter:
         """
         p = self.profile(u)
         c, s = np.cos(theta), np.sin(theta)
-        r = np.stack(np.broadcast_arrays(p.rho * c, p.rho * s, p.z), axis=-1)
-        n = np.stack(np.broadcast_arrays(p.n_rho * c, p.n_rho * s, p.n_z), axis=-1)
-        return r, n
+        return _vectors(p.rho * c, p.rho * s, p.z), _vectors(p.n_rho * c, p.n_rho * s, p.n_z)
 
     def u_at_depth(self, depth: np.ndarray) -> np.ndarray:
         """Profile parameter of the blade point at ``depth`` (mm, >= 0) below the tip plane."""

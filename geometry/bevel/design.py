@@ -31,8 +31,8 @@ import numpy as np
 
 from .blank import BevelBlank
 from .machine import FlankCut, MemberCut
-from .synthesis import FlankTarget, local_synthesis
-from .tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, TCAResult, tca
+from .synthesis import FlankTarget, _synthesis_at, mean_contact
+from .tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, TCAResult, contact_path, tca
 
 __all__ = ["path_line", "cycle_metrics", "control_point_design", "synthesize_flank", "synthesize_pinion"]
 
@@ -125,20 +125,25 @@ def control_point_design(blank: BevelBlank, gear: MemberCut, pinion_side: str, t
     if tol_arcsec <= 0:
         raise ValueError(f"tol_arcsec = {tol_arcsec!r} is outside the allowed range (0, inf)")
 
+    if pinion_side not in ("concave", "convex"):
+        raise ValueError(f"pinion_side = {pinion_side!r}: allowed 'concave' or 'convex'")
+    gear_side = "convex" if pinion_side == "concave" else "concave"
+    mc = mean_contact(blank, gear.flank(gear_side))                 # M0 is the gear's: the same at every step
     last = {}
 
     def evaluate(cd):
         tg, c = (replace(target, major_axis=cd[0]), start[0]) if fixed else (target, cd[0])
-        fc, info = local_synthesis(blank, gear, pinion_side, tg, blank_offset, (c, cd[1]),
-                                   guess=last.get("fc", guess))
+        fc, info = _synthesis_at(blank, mc, pinion_side, tg, blank_offset, (c, cd[1]), None,
+                                 last.get("fc", guess), 1e-12)
         last["fc"] = fc
-        r = tca(_pair(blank, gear, fc), pinion_side, Assembly(), steps_per_cycle=4, max_cycles=0.5)
-        if len(r.phi1) != 5:
+        phi1, _, te, stops = contact_path(_pair(blank, gear, fc), pinion_side, Assembly(), steps_per_cycle=4,
+                                          max_cycles=0.5)
+        if len(phi1) != 5:
             raise ContactError(f"{pinion_side} pinion flank: the contact path leaves the flank before the "
-                               f"transfer points ({r.stops}); reduce the path length (te_magnitude, eta2) "
+                               f"transfer points ({stops}); reduce the path length (te_magnitude, eta2) "
                                f"or the ellipse axis")
-        F = (np.array([r.te[0], r.te[-1]]) + target.te_magnitude) / RAD_PER_ARCSEC
-        return fc, info, r, F
+        F = (np.array([te[0], te[-1]]) + target.te_magnitude) / RAD_PER_ARCSEC
+        return fc, info, F
 
     fixed = blank_offset is not None
     # unknowns: (C, D); redesign: (ellipse axis used at M0, D) -- C then comes from the local synthesis
@@ -146,14 +151,14 @@ def control_point_design(blank: BevelBlank, gear: MemberCut, pinion_side: str, t
     h = np.array([0.01 if fixed else 1e-3, 1e-2])
     it = 0
     for it in range(1, max_iter + 1):
-        fc, info, r, F = evaluate(x)
+        fc, info, F = evaluate(x)
         if np.max(np.abs(F)) < tol_arcsec:
             break
         J = np.empty((2, 2))
         for j in range(2):
             xp = x.copy()
             xp[j] += h[j]
-            J[:, j] = (evaluate(xp)[3] - F) / h[j]
+            J[:, j] = (evaluate(xp)[2] - F) / h[j]
         dx = np.linalg.solve(J, -F)
         x = x + dx * min(1.0, 0.5 * x[0] / abs(dx[0])) if fixed else x + dx
     else:

@@ -29,7 +29,7 @@ import numpy as np
 from ..flank import Flank, surface_curvatures
 from .blank import BevelBlank
 from .machine import FlankCut, MemberCut, cutter_to_cradle, gear_settings, roll
-from .surface_state import SurfaceState, _cross, _ez_cross, _rotz, _vectors, work_state
+from .surface_state import SurfaceState, _vectors, work_state
 
 __all__ = ["MeshingError", "SurfaceState", "surface_state", "solve_axial_points", "generate_flank",
            "generate_member", "normal_thickness", "standard_gear_cut", "axial_grid"]
@@ -46,13 +46,23 @@ def surface_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarra
     if not ms.is_basic:
         from .universal import universal_state
         return universal_state(fc, u, theta, psi, with_work)
-    r_c, n_c = fc.cutter.surface(u, theta)
-    r_m = _rotz(r_c + ms.cutter_center, psi)
-    n_m = _rotz(n_c, psi)
-    k, O = ms.work_axis, ms.work_origin
+    # the blade point and normal (cutter frame, centre moved to Sr (cos q, sin q, 0)) turned by psi about z_m,
+    # component by component: the arithmetic of HeadCutter.surface and _rotz without building the (..., 3) arrays
+    p = fc.cutter.profile(u)
+    psi = np.asarray(psi, dtype=float)
+    c, s = np.cos(theta), np.sin(theta)
+    cp, sp = np.cos(psi), np.sin(psi)
+    C, k, O, _ = ms._frame()
+    x, y = p.rho * c + C[0], p.rho * s + C[1]
+    nx, ny = p.n_rho * c, p.n_rho * s
+    rx, ry = cp * x - sp * y, sp * x + cp * y
+    r_m = _vectors(rx, ry, p.z + C[2])
+    n_m = _vectors(cp * nx - sp * ny, sp * nx + cp * ny, p.n_z)
     d = r_m - O
-    phi, dphi = roll(ms, np.asarray(psi, dtype=float))
-    v = _ez_cross(r_m) - dphi[..., None] * _cross(k, d)
+    phi, dphi = roll(ms, psi)
+    # v = e_z x r_m - phi' k x d, with k = (k_x, 0, k_z) (the products of _cross with the zero terms left out)
+    dx, dy, dz = d[..., 0], d[..., 1], d[..., 2]
+    v = _vectors(-ry - dphi * -(k[2] * dy), rx - dphi * (k[2] * dx - k[0] * dz), -(dphi * (k[0] * dy)))
     f = np.einsum("...i,...i", n_m, v)
     return work_state(ms, d, r_m, n_m, f, phi, with_work)
 

@@ -163,28 +163,42 @@ class MachineSettings:
                   "sliding_base": "helical_motion", "tilt": "tilt_motion", "swivel": "swivel_motion"}[name]
         return _taylor(getattr(self, name), getattr(self, motion), psi)
 
+    def _frame(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Cutter centre, work axis, work origin and work basis (the properties below), built on first use and
+        kept: the generators read them at every evaluation.  Read-only arrays, as the settings are frozen."""
+        f = self.__dict__.get("_frame_arrays")
+        if f is None:
+            centre = np.array([self.radial_setting * np.cos(self.cradle_angle),
+                               self.radial_setting * np.sin(self.cradle_angle), 0.0])
+            k = np.array([np.cos(self.root_angle), 0.0, np.sin(self.root_angle)])
+            origin = np.array([0.0, self.blank_offset, self.sliding_base]) + self.center_to_back * k
+            y = np.array([0.0, 1.0, 0.0])
+            x = np.array([y[1] * k[2] - y[2] * k[1], y[2] * k[0] - y[0] * k[2], y[0] * k[1] - y[1] * k[0]])
+            f = (centre, k, origin, np.stack([x, y, k], axis=1))
+            for a in f:
+                a.flags.writeable = False
+            object.__setattr__(self, "_frame_arrays", f)
+        return f
+
     @property
     def cutter_center(self) -> np.ndarray:
-        """Cutter centre in the cradle frame, shape (3,), mm."""
-        return np.array([self.radial_setting * np.cos(self.cradle_angle),
-                         self.radial_setting * np.sin(self.cradle_angle), 0.0])
+        """Cutter centre in the cradle frame, shape (3,), mm (read-only)."""
+        return self._frame()[0]
 
     @property
     def work_axis(self) -> np.ndarray:
-        """Unit work axis k in S_m, shape (3,)."""
-        return np.array([np.cos(self.root_angle), 0.0, np.sin(self.root_angle)])
+        """Unit work axis k in S_m, shape (3,) (read-only)."""
+        return self._frame()[1]
 
     @property
     def work_origin(self) -> np.ndarray:
-        """Work body origin (pitch apex) O_w in S_m, shape (3,), mm."""
-        return np.array([0.0, self.blank_offset, self.sliding_base]) + self.center_to_back * self.work_axis
+        """Work body origin (pitch apex) O_w in S_m, shape (3,), mm (read-only)."""
+        return self._frame()[2]
 
     @property
     def work_basis(self) -> np.ndarray:
-        """Columns x_w, y_w, z_w of the work body frame at phi = 0, in S_m; shape (3, 3)."""
-        k = self.work_axis
-        y = np.array([0.0, 1.0, 0.0])
-        return np.stack([np.cross(y, k), y, k], axis=1)
+        """Columns x_w = y_w x z_w, y_w, z_w of the work body frame at phi = 0, in S_m; shape (3, 3) (read-only)."""
+        return self._frame()[3]
 
 
 @dataclass(frozen=True)

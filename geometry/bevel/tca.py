@@ -25,10 +25,10 @@ import numpy as np
 from .blank import BevelBlank
 from .generation import _guess, solve_axial_points, surface_state
 from .machine import FlankCut, MemberCut
+from .surface_state import _norm, _rotz, _rotz_cs
 
 __all__ = ["ContactError", "Assembly", "BevelPair", "TCAResult", "mesh_frames", "to_pitch_coords", "curvature_tensor",
-           "drive_sign",
-           "tca", "RAD_PER_ARCSEC"]
+           "drive_sign", "contact_path", "tca", "RAD_PER_ARCSEC"]
 
 RAD_PER_ARCSEC = np.pi / (180.0 * 3600.0)
 
@@ -104,11 +104,6 @@ class TCAResult:
     def contact_ratio(self) -> float:
         """Pinion angle range of the path on both flanks divided by the mesh cycle."""
         return float((self.phi1.max() - self.phi1.min()) / self.cycle)
-
-
-def _rotz(v, a):
-    c, s = np.cos(a), np.sin(a)
-    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1], v[..., 2]], -1)
 
 
 def _rz_mats(a: np.ndarray) -> np.ndarray:
@@ -197,20 +192,23 @@ def curvature_tensor(fc: FlankCut, q: np.ndarray) -> np.ndarray:
     return np.einsum("nai,nab,nbj->nij", E, K2, E)
 
 
-def tca(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = Assembly(), steps_per_cycle: int = 16,
-        delta: float = 0.00632, max_cycles: float = 3.0) -> TCAResult:
-    """Continuous-tangency TCA of one flank pair, from the mean point both ways to the flank edges.
+def contact_path(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = Assembly(),
+                 steps_per_cycle: int = 16, max_cycles: float = 3.0
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[str, ...]]:
+    """The path of contact of :func:`tca` without the contact ellipses: the kinematics alone.
 
-    Parameters
-    ----------
-    pair : BevelPair
-    pinion_side : ``"concave"`` (drives the gear convex) or ``"convex"`` (meets the gear concave)
-    asm : Assembly
-    steps_per_cycle : int, >= 4
-    delta : float
-        Elastic approach of the contact ellipse, mm.
-    max_cycles : float
-        Largest pinion rotation followed each way, in mesh cycles.
+    Parameters as :func:`tca`.
+
+    Returns
+    -------
+    phi1 : ndarray (n,)
+        Pinion angles, rad, ascending.
+    X : ndarray (n, 7)
+        (u1, theta1, psi1, u2, theta2, psi2, phi2) at each angle (module docstring).
+    te : ndarray (n,)
+        Transmission error, rad (driven sense, zero at phi1 = 0).
+    stops : tuple of str
+        Why the path ended at each end.
     """
     if pinion_side not in ("concave", "convex"):
         raise ValueError(f"pinion_side = {pinion_side!r}: allowed 'concave' or 'convex'")
@@ -223,39 +221,47 @@ def tca(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = Assembly(
     Am = bl.mean_cone_distance
     W = 0.1 * Am                                                   # weight of the normal equations, mm
 
+    B1T, B2T = B1.T, B2.T
+
     def residual(X, phi1):
         s1 = surface_state(fc1, X[..., 0], X[..., 1], X[..., 2])
         s2 = surface_state(fc2, X[..., 3], X[..., 4], X[..., 5])
-        r1 = _rotz(s1.r_w, phi1) @ B1.T + O1
-        n1 = _rotz(s1.n_w, phi1) @ B1.T
-        r2 = _rotz(s2.r_w, X[..., 6]) @ B2.T + O2
-        n2 = _rotz(s2.n_w, X[..., 6]) @ B2.T
-        return np.concatenate([r1 - r2, W * (n1 + n2), s1.f[..., None], s2.f[..., None]], -1)
+        c1, z1 = np.cos(phi1), np.sin(phi1)
+        c2, z2 = np.cos(X[..., 6]), np.sin(X[..., 6])
+        r1 = _rotz_cs(s1.r_w, c1, z1) @ B1T + O1
+        n1 = _rotz_cs(s1.n_w, c1, z1) @ B1T
+        r2 = _rotz_cs(s2.r_w, c2, z2) @ B2T + O2
+        n2 = _rotz_cs(s2.n_w, c2, z2) @ B2T
+        out = np.empty(np.shape(X)[:-1] + (8,))
+        out[..., :3], out[..., 3:6], out[..., 6], out[..., 7] = r1 - r2, W * (n1 + n2), s1.f, s2.f
+        return out
 
     h = np.array([1e-6, 1e-8, 1e-8, 1e-6, 1e-8, 1e-8, 1e-8])
+    steps = np.diag(h)
+    angles = np.array([1, 2, 4, 5, 6])                             # the unknowns in rad: their steps are capped
 
     def newton(X, phi1):
         # Levenberg-Marquardt: damping keeps steps small along the (near) null direction of line contact
         F = residual(X, phi1)
-        nF = np.linalg.norm(F)
+        nF = _norm(F)
         mu = 1e-4
         for _ in range(60):
-            if np.max(np.abs(F)) < 1e-10:
+            if np.abs(F).max() < 1e-10:
                 return X, True
-            Xp = X[None, :] + np.diag(h)
+            Xp = X[None, :] + steps
             J = (residual(Xp, phi1) - F).T / h
             A = J.T @ J
             g = J.T @ F
             while True:
                 dx = -np.linalg.solve(A + mu * np.diag(np.diag(A) + 1e-12), g)
-                dx *= min(1.0, 0.1 / max(np.max(np.abs(dx[[1, 2, 4, 5, 6]])), 1e-300))
+                dx *= min(1.0, 0.1 / max(np.abs(dx[angles]).max(), 1e-300))
                 Fn = residual(X + dx, phi1)
-                if np.linalg.norm(Fn) < nF or mu > 1e8:
+                if _norm(Fn) < nF or mu > 1e8:
                     break
                 mu *= 10.0
-            X, F, nF = X + dx, Fn, np.linalg.norm(Fn)
+            X, F, nF = X + dx, Fn, _norm(Fn)
             mu = max(mu * 0.1, 1e-12)
-        return X, bool(np.max(np.abs(F)) < 1e-8)
+        return X, bool(np.abs(F).max() < 1e-8)
 
     # reference position: gear mean point, phi1 = 0
     mb2, mb1 = bl.gear, bl.pinion
@@ -306,13 +312,37 @@ def tca(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = Assembly(
     keys = sorted(rows)
     phi1 = np.array([rows[k][0] for k in keys])
     Xs = np.array([rows[k][1] for k in keys])
-    phi2 = Xs[:, 6]
     ratio = bl.pinion.z / bl.gear.z
     ref = surface_state(fc2, *X[3:6])
-    te = drive_sign(ref.r_w, ref.n_w) * (-(phi2 - X[6]) - ratio * phi1)
+    te = drive_sign(ref.r_w, ref.n_w) * (-(Xs[:, 6] - X[6]) - ratio * phi1)
+    return phi1, Xs, te, tuple(stops)
+
+
+def tca(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = Assembly(), steps_per_cycle: int = 16,
+        delta: float = 0.00632, max_cycles: float = 3.0) -> TCAResult:
+    """Continuous-tangency TCA of one flank pair, from the mean point both ways to the flank edges.
+
+    Parameters
+    ----------
+    pair : BevelPair
+    pinion_side : ``"concave"`` (drives the gear convex) or ``"convex"`` (meets the gear concave)
+    asm : Assembly
+    steps_per_cycle : int, >= 4
+    delta : float
+        Elastic approach of the contact ellipse, mm.
+    max_cycles : float
+        Largest pinion rotation followed each way, in mesh cycles.
+    """
+    phi1, Xs, te, stops = contact_path(pair, pinion_side, asm, steps_per_cycle, max_cycles)
+    gear_side = "convex" if pinion_side == "concave" else "concave"
+    bl = pair.blank
+    fc1, fc2 = pair.pinion.flank(pinion_side), pair.gear.flank(gear_side)
+    B1, O1, B2, O2 = mesh_frames(bl, asm)
+    cycle = 2 * np.pi / bl.pinion.z
+    phi2 = Xs[:, 6]
     s1 = surface_state(fc1, Xs[:, 0], Xs[:, 1], Xs[:, 2]); s2 = surface_state(fc2, Xs[:, 3], Xs[:, 4], Xs[:, 5])
     r_h = _rotz(s2.r_w, phi2) @ B2.T + O2
-    L2, Rn2 = to_pitch_coords(s2.r_w, mb2.pitch_angle)
+    L2, Rn2 = to_pitch_coords(s2.r_w, bl.gear.pitch_angle)
     # contact ellipses, in the gear body frame
     K2 = curvature_tensor(fc2, Xs[:, 3:6])
     K1 = curvature_tensor(fc1, Xs[:, 0:3])
