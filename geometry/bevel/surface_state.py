@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SurfaceState", "work_state"]
+__all__ = ["SurfaceState", "work_state", "cross3", "norm3"]
 
 
 @dataclass(frozen=True)
@@ -63,7 +63,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return _vectors(a[1] * z - a[2] * y, a[2] * x - a[0] * z, a[0] * y - a[1] * x)
 
 
-def _cross3(a, b) -> np.ndarray:
+def cross3(a, b) -> np.ndarray:
     """a x b of two (3,) vectors, as np.cross computes it (the same products and differences) at a fraction of its
     per-call cost."""
     a0, a1, a2 = a
@@ -71,7 +71,7 @@ def _cross3(a, b) -> np.ndarray:
     return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
 
 
-def _norm(a: np.ndarray) -> float:
+def norm3(a: np.ndarray) -> float:
     """Euclidean length of a 1-D vector, as np.linalg.norm computes it (the square root of a . a)."""
     return math.sqrt(a.dot(a))
 

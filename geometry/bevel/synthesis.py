@@ -33,7 +33,7 @@ from .blank import BevelBlank
 from .cutter import HeadCutter
 from .generation import MeshingError, _guess, solve_axial_points, surface_state
 from .machine import FlankCut, MachineSettings, MemberCut, roll
-from .surface_state import _cross3, _norm
+from .surface_state import cross3, norm3
 from .tca import RAD_PER_ARCSEC, drive_sign, mesh_frames
 
 __all__ = ["FlankTarget", "MeanContact", "second_order", "generated_curvature", "mean_contact",
@@ -85,12 +85,12 @@ def second_order(r, n, K2, w1, O1, w2, O2, dw1=None, dw2=None) -> tuple[np.ndarr
     dw2 = np.zeros(3) if dw2 is None else dw2
     w12 = w1 - w2
     a1, a2 = r - O1, r - O2
-    w1a1 = _cross3(w1, a1)
-    v12 = w1a1 - _cross3(w2, a2)
+    w1a1 = cross3(w1, a1)
+    v12 = w1a1 - cross3(w2, a2)
     P = np.eye(3) - np.outer(n, n)
-    b = P @ (_cross3(n, w12) - K2 @ v12)
-    d0 = -(_cross3(w2, n) @ v12 - v12 @ K2 @ v12 + n @ (_cross3(dw1, a1) - _cross3(dw2, a2))
-           + n @ _cross3(w12, w1a1))
+    b = P @ (cross3(n, w12) - K2 @ v12)
+    d0 = -(cross3(w2, n) @ v12 - v12 @ K2 @ v12 + n @ (cross3(dw1, a1) - cross3(dw2, a2))
+           + n @ cross3(w12, w1a1))
     return b, float(d0), v12
 
 
@@ -191,13 +191,13 @@ def path_tangent(blank: BevelBlank, r2: np.ndarray, n2: np.ndarray, eta2: float)
     g, dd = blank.gear.pitch_angle, blank.gear.dedendum_angle
     e_rho = np.array([r2[0], r2[1], 0.0]) / np.hypot(r2[0], r2[1])
     e_z = np.array([0.0, 0.0, 1.0])
-    e_th = _cross3(e_z, e_rho)
+    e_th = cross3(e_z, e_rho)
     a = dd + eta2                                       # angle from the pitch generatrix (L axis)
     dL, dRn = np.cos(a), np.sin(a)
     dZ, drho = dL * np.cos(g) - dRn * np.sin(g), dL * np.sin(g) + dRn * np.cos(g)
     d = dZ * e_z + drho * e_rho
     e = d - (d @ n2) / (e_th @ n2) * e_th
-    return e / _norm(e)
+    return e / norm3(e)
 
 
 def pinion_curvature(blank: BevelBlank, mc: MeanContact, target: FlankTarget) -> tuple[np.ndarray, dict]:
@@ -208,10 +208,10 @@ def pinion_curvature(blank: BevelBlank, mc: MeanContact, target: FlankTarget) ->
     dw2 = -drive_sign(mc.r2, mc.n2) * m21 * mc.B2[:, 2]        # m21 in the driven sense (tca.drive_sign)
     b, d0, v12 = second_order(mc.r_h, n, mc.K2_h, mc.w1, mc.O1, mc.w2, mc.O2, dw2=dw2)
     be = b @ e
-    if abs(be) < 1e-12 * _norm(b):
+    if abs(be) < 1e-12 * norm3(b):
         raise ValueError(f"eta2 = {target.eta2!r}: this path direction is singular (b . e = 0)")
     s = (d0 + b @ v12) / be
-    f = _cross3(n, e)
+    f = cross3(n, e)
     See, Sef = be / s, (b @ f) / s
     lam = 8.0 * target.delta / target.major_axis ** 2
     if See <= lam:
@@ -234,12 +234,12 @@ def _placement(P_w, n_w, K_w, gm, sg, rp, XG, XB, Em, C, D, edge_radius):
     P, n, K_goal = O + B @ P_w, B @ n_w, B @ K_w @ B.T
     alpha = float(np.arcsin(np.clip(-n[2], -1.0, 1.0)))
     e_rho = -n[:2] / (sg * np.cos(alpha))
-    e_rho /= _norm(e_rho)
+    e_rho /= norm3(e_rho)
     depth = -P[2]
     rho = rp + sg * depth * np.tan(alpha)
     c = P[:2] - rho * e_rho
     k = ms0.work_axis
-    ma = float(n @ _cross3((0.0, 0.0, 1.0), P) / (n @ _cross3(k, P - O)))
+    ma = float(n @ cross3((0.0, 0.0, 1.0), P) / (n @ cross3(k, P - O)))
     if not (0.0 <= alpha <= np.deg2rad(45.0)) or ma <= 0 or rp <= 0:
         raise ValueError(f"no admissible blade through M0 (blade angle {np.rad2deg(alpha):.2f} deg, "
                          f"ratio of roll {ma:.4f}, point radius {rp:.3f} mm)")
@@ -250,9 +250,9 @@ def _placement(P_w, n_w, K_w, gm, sg, rp, XG, XB, Em, C, D, edge_radius):
     th = float(np.arctan2(pc[1], pc[0]))
     fc = FlankCut(ms, cu)
     K, _ = _generated_machine(fc, u, th, 0.0)
-    e1 = _cross3(n, (0.0, 1.0, 0.0))
-    e1 /= _norm(e1)
-    e2 = _cross3(n, e1)
+    e1 = cross3(n, (0.0, 1.0, 0.0))
+    e1 /= norm3(e1)
+    e2 = cross3(n, e1)
     dK = K - K_goal
     return fc, u, th, np.array([e1 @ dK @ e1, e1 @ dK @ e2, e2 @ dK @ e2])
 
