@@ -8,7 +8,7 @@ from __future__ import annotations
 from matplotlib import cm
 from matplotlib.figure import Figure
 
-__all__ = ["subplots", "figure", "close", "cm", "warm_up"]
+__all__ = ["subplots", "figure", "close", "cm"]
 
 
 def subplots(nrows: int = 1, ncols: int = 1, *, sharex=False, sharey=False, squeeze: bool = True,
@@ -28,19 +28,3 @@ def figure(**fig_kw) -> Figure:
 def close(fig: Figure) -> None:
     """Release a figure's artists (a Figure without pyplot is not registered anywhere)."""
     fig.clear()
-
-
-def warm_up() -> None:
-    """Draw and encode a small figure once (a PNG in memory).
-
-    matplotlib loads its fonts, text layout and Agg renderer at the first figure it saves, which then costs what
-    several figures do.
-    """
-    import io
-    fig, ax = subplots(figsize=(2, 1.5))
-    ax.plot([0, 1], [0, 1], "o-", label="a")
-    ax.set(xlabel="x", ylabel="y", title="t")
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(io.BytesIO(), format="png", dpi=50)
-    close(fig)

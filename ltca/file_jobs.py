@@ -2,16 +2,15 @@
 
 Writing a run's files is Python that holds the GIL (matplotlib's drawing, meshio's base64 and zlib, the netCDF
 serialisation), so a second thread cannot overlap it with the main process's own work on the other files (the
-ParaView series, whose fields come from the factorisations, the report's checks). A second *process* can. A writer
-hands a file to a :class:`FileJobs` as a job, a function and its arguments:
+ParaView fields' back-substitutions, the report's checks). A second *process* can. A writer hands every file to a
+:class:`FileJobs` as a job, a function and its arguments:
 
 - :class:`FileJobs` runs each job at once in the caller (the library's default: :meth:`ltca.LoadedResult.save`
   starts no process);
 - :class:`BackgroundFiles` runs them, in the order given, in one worker process started with ``spawn`` (the same on
   every platform, and no copy of a parent whose MKL or OpenMP threads are running). ``ltca run`` starts it with
-  the run, so that it imports and warms up the writers while the main process meshes, and gives it the files
-  when the analysis is done. The worker ignores Ctrl-C (the main process stops it) and ends when the main
-  process ends, however that ends.
+  the run, so that it imports the writers while the main process meshes, and gives it the files when the
+  analysis is done.
 
 :meth:`FileJobs.wait` returns when every job so far is done and raises the first job's exception (after all of
 them have stopped: a failed run's staging folder is not written into after it is removed). A job's arguments are
@@ -45,9 +44,9 @@ class FileJobs:
         self.close()
 
 
-def _ready(writers: Sequence[str]) -> None:
+def _ready(modules: Sequence[str]) -> None:
     """Worker start-up: leave Ctrl-C to the main process (which stops the worker), leave with the main process
-    however it ends (a watcher thread), import the writers' modules and call their ``"module:function"`` warm-ups."""
+    however it ends (a watcher thread), import the writers."""
     import importlib
     import multiprocessing
     import signal
@@ -56,11 +55,8 @@ def _ready(writers: Sequence[str]) -> None:
     parent = multiprocessing.parent_process()
     if parent is not None:
         threading.Thread(target=_leave_with, args=(parent,), daemon=True).start()
-    for name in writers:
-        module, _, warm = name.partition(":")
-        imported = importlib.import_module(module)
-        if warm:
-            getattr(imported, warm)()
+    for name in modules:
+        importlib.import_module(name)
 
 
 def _leave_with(parent) -> None:
@@ -75,16 +71,15 @@ class BackgroundFiles(FileJobs):
 
     Parameters
     ----------
-    writers : sequence of str
-        What the worker prepares as it starts, while the caller goes on: modules to import (those of the functions
-        the jobs will call) and ``"module:function"`` warm-ups to call (e.g. :func:`ltca.outputs.warm_up`).
+    modules : sequence of str
+        Modules the worker imports as it starts (the writers the jobs will call), while the caller goes on.
     """
 
-    def __init__(self, writers: Sequence[str] = ()):
+    def __init__(self, modules: Sequence[str] = ()):
         import multiprocessing
         from concurrent.futures import ProcessPoolExecutor
         self._pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"), initializer=_ready,
-                                         initargs=(tuple(writers),))
+                                         initargs=(tuple(modules),))
         self._pending: list[Future] = [self._pool.submit(int)]     # the pool starts its worker at the first job
 
     def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> None:
@@ -110,13 +105,10 @@ class BackgroundFiles(FileJobs):
         self._pool.shutdown(wait=True, cancel_futures=True)
 
 
-def start_background(writers: Sequence[str] = ()) -> FileJobs:
-    """A :class:`BackgroundFiles` preparing ``writers``; the serial :class:`FileJobs` when there are none (a kind
-    that writes in-process) or no process can be started (a sandbox without ``fork``/``exec``, too many
-    processes)."""
-    if not writers:
-        return FileJobs()
+def start_background(modules: Sequence[str] = ()) -> FileJobs:
+    """A :class:`BackgroundFiles`, or the serial :class:`FileJobs` where no process can be started (a sandbox
+    without ``fork``/``exec``, too many processes)."""
     try:
-        return BackgroundFiles(writers)
+        return BackgroundFiles(modules)
     except OSError:
         return FileJobs()

@@ -33,7 +33,7 @@ from .errors import CaseError
 
 __all__ = ["check_out_dir", "take_or_solve", "RunDir", "atomic_path", "write_json_atomic", "write_bytes_atomic", "write_netcdf_atomic",
            "netcdf_bytes", "check_free_space", "PositionStore", "finite_json", "read_status", "OUTPUTS", "staging",
-           "signature_of", "write_json", "warm_up"]
+           "signature_of", "write_json"]
 
 
 #: results of ``ltca run`` that a fresh start removes (stale results of an earlier run)
@@ -122,14 +122,6 @@ def netcdf_bytes(ds, encoding: dict | None = None) -> bytes:
         scheduler = contextlib.nullcontext()
     with scheduler:
         return bytes(ds.to_netcdf(engine="h5netcdf", encoding=encoding or {}))
-
-
-def warm_up() -> None:
-    """Serialise a tiny dataset once (:func:`netcdf_bytes`): the first netCDF a process writes imports and sets up
-    xarray's h5netcdf backend, h5py and Dask's scheduler lookup, which cost more than a run's own results."""
-    import numpy as np
-    import xarray as xr
-    netcdf_bytes(xr.Dataset({"x": ("i", np.zeros(2))}))
 
 
 def write_netcdf_atomic(path: str | Path, ds, encoding: dict | None = None) -> int:

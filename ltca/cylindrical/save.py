@@ -54,7 +54,7 @@ def write_outputs(run: CylindricalRun, head: dict, stage: Path, case_file: str, 
     if paraview_steps:
         from .paraview import write_series
         t0 = time.perf_counter()
-        pv = write_series(stage, lm, first, case.torques[0], steps=paraview_steps)
+        pv = write_series(stage, lm, first, case.torques[0], steps=paraview_steps, jobs=jobs)
         head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
         head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": case.torques[0] * 1e-3,
                            "roll_deg": pv["roll_deg"], "flank_peak_mpa": pv["flank_peak_mpa"]}

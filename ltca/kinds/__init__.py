@@ -18,8 +18,7 @@ class Analysis:
     ``result(case, run)`` (its LoadedResult), ``write(result, head, stage, case_file, report, paraview_steps, jobs)``
     (its files, summary.json excepted; the files it hands to ``jobs``, a :class:`ltca.file_jobs.FileJobs`, may be
     written by another process), ``bodies(run)`` (the FE bodies' compliance records, for the run's log) and
-    ``writers`` (what a background writer prepares before the jobs come: the modules whose functions ``write`` hands
-    to ``jobs``, imported, and ``"module:function"`` warm-ups, called; none: the files are written in-process)."""
+    ``writers`` (the modules whose functions ``write`` hands to ``jobs``: a background writer imports them first)."""
     plan: Callable
     execute: Callable
     result: Callable

@@ -40,7 +40,7 @@ def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report
         T = run.plan.torques_nm[0]
         rr = run.runs["concave" if T > 0 else "convex"]
         pv = write_series(stage, rr["lm"], rr[T], result.dataset.cycle.values, T, steps=paraview_steps,
-                          name=run.plan.case.name)
+                          name=run.plan.case.name, jobs=jobs)
         head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
         head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": T, "cycle": pv["cycle"],
                             "flank_peak_mpa": pv["flank_peak_mpa"]}
@@ -55,5 +55,4 @@ def _bodies(run: analysis.BevelRun) -> tuple:
 
 
 ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True,
-                    bodies=_bodies, writers=("ltca.bevel.plots", "ltca.vtu", "ltca.outputs:warm_up",
-                                             "ltca.figures:warm_up"))
+                    bodies=_bodies, writers=("ltca.bevel.plots", "ltca.outputs", "ltca.vtu", "h5netcdf"))

@@ -33,4 +33,4 @@ def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report
 
 ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True,
                     bodies=lambda run: (run.lm.body1, run.lm.body2),
-                    writers=("ltca.cylindrical.report", "ltca.vtu", "ltca.outputs:warm_up", "ltca.figures:warm_up"))
+                    writers=("ltca.cylindrical.report", "ltca.outputs", "ltca.vtu", "h5netcdf"))

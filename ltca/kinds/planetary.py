@@ -101,11 +101,11 @@ def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report
         T = run.torques[0]
         pv = write_series(stage, run.lm, run.results[0], T, steps=paraview_steps,
                           comment=f"{run.plan.case.name}, satellite torque {T * 1e-3:g} N m, drive direction; "
-                                  "timestep = satellite angle, deg")
+                                  "timestep = satellite angle, deg", jobs=jobs)
         head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
         head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": T * 1e-3, "position_deg": pv["roll_deg"],
                             "flank_peak_mpa": pv["flank_peak_mpa"]}
 
 
 ANALYSIS = Analysis(plan=_plan, execute=prun.execute, result=_result, write=_write, resumable=True,
-                    bodies=lambda run: (run.lm.body1, run.lm.body2))
+                    bodies=lambda run: (run.lm.body1, run.lm.body2), writers=("ltca.vtu",))

@@ -25,20 +25,6 @@ def test_jobs_run_in_order_in_another_process(tmp_path):
     assert int(pid.read_text()) != os.getpid()
 
 
-def test_the_worker_prepares_the_writers_before_the_jobs(tmp_path):
-    with fj.BackgroundFiles(("ltca.vtu", "ltca.outputs:warm_up", "ltca.figures:warm_up")) as jobs:
-        jobs.submit(Path.write_text, tmp_path / "after.txt", "written")
-        jobs.wait()
-    assert (tmp_path / "after.txt").read_text() == "written"
-    with fj.BackgroundFiles(("ltca.outputs:no_such_warm_up",)) as jobs:
-        with pytest.raises(RuntimeError, match="stopped unexpectedly"):
-            jobs.wait()
-
-
-def test_no_writers_no_process():
-    assert type(fj.start_background(())) is fj.FileJobs
-
-
 def test_wait_raises_a_jobs_error_once_every_job_has_stopped(tmp_path):
     after = tmp_path / "after.txt"
     with fj.BackgroundFiles() as jobs:
