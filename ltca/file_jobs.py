@@ -45,25 +45,12 @@ class FileJobs:
 
 
 def _ready(modules: Sequence[str]) -> None:
-    """Worker start-up: leave Ctrl-C to the main process (which stops the worker), leave with the main process
-    however it ends (a watcher thread), import the writers."""
+    """Worker start-up: leave Ctrl-C to the main process (which stops the worker) and import the writers."""
     import importlib
-    import multiprocessing
     import signal
-    import threading
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    parent = multiprocessing.parent_process()
-    if parent is not None:
-        threading.Thread(target=_leave_with, args=(parent,), daemon=True).start()
     for name in modules:
         importlib.import_module(name)
-
-
-def _leave_with(parent) -> None:
-    """End this process when ``parent`` (a ``multiprocessing`` parent process record) has ended."""
-    import os
-    parent.join()
-    os._exit(0)
 
 
 class BackgroundFiles(FileJobs):

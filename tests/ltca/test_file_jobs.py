@@ -53,38 +53,3 @@ def test_serial_fallback_where_no_process_can_start(tmp_path, monkeypatch):
     assert (tmp_path / "now.txt").read_text() == "at once"      # written before wait
     with pytest.raises(ValueError):
         jobs.submit(int, "x")
-
-
-_ORPHAN_SCRIPT = """
-import os, sys
-from pathlib import Path
-
-def pid_into(path):
-    Path(path).write_text(str(os.getpid()))
-
-if __name__ == "__main__":
-    from ltca.file_jobs import BackgroundFiles
-    jobs = BackgroundFiles()
-    jobs.submit(pid_into, sys.argv[1])
-    jobs.wait()
-    os._exit(9)                     # the main process dies without stopping its worker
-"""
-
-
-def test_the_worker_leaves_when_the_main_process_dies(tmp_path):
-    import subprocess
-    import sys
-    import time
-    script, pid = tmp_path / "dies.py", tmp_path / "worker.pid"
-    script.write_text(_ORPHAN_SCRIPT)
-    done = subprocess.run([sys.executable, str(script), str(pid)], timeout=120)
-    assert done.returncode == 9
-    worker = int(pid.read_text())
-    for _ in range(100):
-        try:
-            os.kill(worker, 0)
-        except ProcessLookupError:
-            return
-        time.sleep(0.1)
-    os.kill(worker, 9)
-    pytest.fail("the worker process outlived its main process by 10 s")
