@@ -10,7 +10,6 @@ import time
 from .console import print_result
 from .core import _analysis, execute, plan
 from .errors import CaseError
-from .file_jobs import start_background
 from .results import write_into
 
 __all__ = ["run_to_dir"]
@@ -42,12 +41,10 @@ def run_to_dir(case_path: str, out: str = "out", *, fidelity: str | None = None,
         return head
     from .outputs import signature_of
     sig = signature_of(case_path, fidelity=p.fidelity_name, positions=p.positions, torques_nm=list(p.torques_nm))
-    # the files are written by a second process, started now so that it imports the writers during the analysis
-    with RunDir(out, f"ltca run {case_path}", sig, resume=resume) as rd, start_background(analysis.writers) as jobs:
+    with RunDir(out, f"ltca run {case_path}", sig, resume=resume) as rd:
         store = PositionStore(rd.out) if analysis.resumable else None
         result = execute(case, p, progress=say, cache=cache, store=store)
-        head = write_into(result, rd.out, paraview_steps=10 if paraview_steps is None else paraview_steps,
-                          jobs=jobs)
+        head = write_into(result, rd.out, paraview_steps=10 if paraview_steps is None else paraview_steps)
         if say:
             say(f"wrote {rd.out}: summary.json, results.nc, the plots, VTU and report ({time.perf_counter() - t0:.1f} s)")
     for w in head.get("warnings", [])[len(getattr(p, "warnings", ())):]:

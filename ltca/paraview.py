@@ -26,7 +26,6 @@ import numpy as np
 
 from ltca.fem.readout import element_stress_matrix
 
-from .file_jobs import FileJobs
 from .vtu import write_vtu_file
 
 __all__ = ["select_steps", "stress_fields", "BodyPart", "flank_mesh", "write_series"]
@@ -117,8 +116,7 @@ def flank_mesh(points: np.ndarray, quads: np.ndarray, pressure: np.ndarray, fram
                        cell_data={"contact_pressure_mpa": [np.asarray(pressure, np.float32).reshape(-1)]})
 
 
-def write_series(out: str | Path, steps: Iterable[tuple[float, Sequence[tuple[str, object]]]], comment: str,
-                 jobs: FileJobs | None = None) -> dict:
+def write_series(out: str | Path, steps: Iterable[tuple[float, Sequence[tuple[str, object]]]], comment: str) -> dict:
     """Write the VTU parts of every step and ``paraview.pvd`` listing them into ``out``.
 
     Parameters
@@ -130,8 +128,6 @@ def write_series(out: str | Path, steps: Iterable[tuple[float, Sequence[tuple[st
         generator (each step's meshes are written, then dropped).
     comment : str
         One line in the PVD saying what the run and the time value are.
-    jobs : FileJobs, optional
-        Writes the VTU files (:mod:`ltca.file_jobs`); default: at once, here.
 
     Returns
     -------
@@ -139,14 +135,13 @@ def write_series(out: str | Path, steps: Iterable[tuple[float, Sequence[tuple[st
         ``{"pvd": path, "files": number of files written, "timesteps": [...]}``.
     """
     out = Path(out)
-    jobs = jobs or FileJobs()
     t0 = time.perf_counter()
     rows, times, files = [], [], 0
     for j, (timestep, parts) in enumerate(steps):
         times.append(float(timestep))
         for i, (name, mesh) in enumerate(parts):
             f = f"paraview_{name}_{j:03d}.vtu"
-            jobs.submit(write_vtu_file, out / f, mesh)
+            write_vtu_file(out / f, mesh)
             files += 1
             rows.append(f'    <DataSet timestep="{timestep:.6g}" part="{i}" name={quoteattr(name)} file={quoteattr(f)}/>')
     text = ('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'

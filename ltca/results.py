@@ -34,7 +34,6 @@ import xarray as xr
 from . import accessor as _accessor  # noqa: F401  (registers the ``ltca`` dataset accessor)
 from .cases import Case
 from .errors import CaseError
-from .file_jobs import FileJobs
 
 __all__ = ["LoadedResult", "TorqueFigures", "open_result", "save_result", "write_into", "TE_SIGN"]
 
@@ -134,12 +133,10 @@ def signature(case: Case, **settings) -> dict:
     return {"case_sha256": hashlib.sha256(case.to_toml().encode()).hexdigest(), **settings}
 
 
-def write_into(result: LoadedResult, out: Path, *, report: bool = True, paraview_steps: int = 10,
-               jobs: FileJobs | None = None) -> dict:
+def write_into(result: LoadedResult, out: Path, *, report: bool = True, paraview_steps: int = 10) -> dict:
     """Write a result's files into the run folder ``out`` (already locked); return the summary as written.
 
-    Every file goes through a staging folder, ``summary.json`` last. ``jobs`` writes the files the kind hands it
-    (default: at once, in this process; :mod:`ltca.file_jobs`); every job is done before the folder is committed.
+    Every file goes through a staging folder, ``summary.json`` last.
     """
     from .outputs import staging, write_bytes_atomic, write_json_atomic
     from .validation import read_case_file
@@ -151,9 +148,7 @@ def write_into(result: LoadedResult, out: Path, *, report: bool = True, paraview
         case_file = str(Path(out) / "case.toml")
         write_bytes_atomic(case_file, result.case.to_toml().encode())
     with staging(out) as stage:
-        jobs = jobs or FileJobs()
-        result._writer(result, head, stage, case_file, report, paraview_steps, jobs)
-        jobs.wait()
+        result._writer(result, head, stage, case_file, report, paraview_steps)
     write_json_atomic(Path(out) / "summary.json", head)
     return head
 

@@ -23,7 +23,6 @@ import numpy as np
 from ltca.geometry.bevel.sampling import flank_at
 from ltca.geometry.bevel.tca import mesh_frames
 
-from ..file_jobs import FileJobs
 from ..paraview import BodyPart, flank_mesh, select_steps
 from ..paraview import write_series as write_pvd
 from .loaded import BevelPosition, _weights_of
@@ -117,10 +116,9 @@ class _Flank:
 
 
 def write_series(out: Path, lm: BevelLoadedModel, results: list[BevelPosition], cycle: np.ndarray, torque_nm: float,
-                 steps: int | None = None, name: str = "", jobs: FileJobs | None = None) -> dict:
+                 steps: int | None = None, name: str = "") -> dict:
     """Write ``paraview.pvd`` and its VTU parts for ``results`` (one torque, N m, over the positions ``cycle``,
-    mesh cycles from the mean point) into ``out`` (module docstring); ``jobs`` writes the VTU files
-    (:mod:`ltca.file_jobs`).
+    mesh cycles from the mean point) into ``out`` (module docstring).
 
     Returns ``{"pvd": path, "steps": [position index], "cycle": [...], "flank_peak_mpa": [...], "files": n}``."""
     pair, B = lm.pair, lm.bodies
@@ -150,6 +148,6 @@ def write_series(out: Path, lm: BevelLoadedModel, results: list[BevelPosition], 
             yield cycle[k], [("pinion", bodies[0].mesh(U[0][:, j], f1)), ("gear", bodies[1].mesh(U[1][:, j], f2)),
                              ("flank", flank_mesh(pts, quads, p, f1))]
     pv = write_pvd(out, parts(), f"{name}, {torque_nm:g} N m (pinion); timestep = position in mesh cycles from "
-                                 "the mean point", jobs)
+                                 "the mean point")
     return {"pvd": pv["pvd"], "steps": [int(k) for k in pick], "cycle": [float(cycle[k]) for k in pick],
             "flank_peak_mpa": peaks, "files": pv["files"]}

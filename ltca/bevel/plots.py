@@ -9,14 +9,10 @@ import numpy as np
 
 from .loaded_model import LOADED
 
-__all__ = ["FILES", "gear_outline", "plot_all"]
-
-#: the files :func:`plot_all` writes
-FILES = ("te.png", "bearing_pattern.png", "load_sharing.png")
+__all__ = ["plot_all"]
 
 
-def gear_outline(pair) -> np.ndarray:
-    """The gear tooth's axial section, (5, 2) (cone distance L, Rn) mm, closed: root and face cone from toe to heel."""
+def _outline(pair) -> np.ndarray:
     bl = pair.blank
     A0, Ai = bl.outer_cone_distance, bl.inner_cone_distance
     Lb = np.array([Ai, A0])
@@ -24,12 +20,12 @@ def gear_outline(pair) -> np.ndarray:
     return np.array([[Ai, root[0]], [A0, root[1]], [A0, face[1]], [Ai, face[0]], [Ai, root[0]]])
 
 
-def plot_all(d: Path, title: str, box: np.ndarray, ds, per: dict, patterns: dict, outlines: dict, paths: dict
+def plot_all(d: Path, title: str, pair, ds, per: dict, patterns: dict, outlines: dict, paths: dict, runs: dict
              ) -> list[str]:
-    """Write :data:`FILES` (te.png, bearing_pattern.png, load_sharing.png) into ``d``; returns their names. ``box`` is the
-    gear tooth's axial section (:func:`gear_outline`) drawn round the bearing pattern."""
+    """Write te.png, bearing_pattern.png and load_sharing.png; returns the file names."""
     from matplotlib import colormaps
     from matplotlib.figure import Figure
+    files = []
     tq = [float(t) for t in ds.torque.values]
     x = ds.cycle.values
     cmap = colormaps["viridis"]
@@ -50,7 +46,9 @@ def plot_all(d: Path, title: str, box: np.ndarray, ds, per: dict, patterns: dict
     ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()
     fig.savefig(d / "te.png", dpi=120)
+    files.append("te.png")
 
+    box = _outline(pair)
     # colour scale: the largest interior peak (edge peaks are singular and mesh-dependent: they saturate)
     vmax = 1.1 * max(float(np.max(per[T]["pmax_interior"])) for T in tq)
     fig = Figure(figsize=(8, 2.6 * len(tq) + 0.6))
@@ -74,6 +72,7 @@ def plot_all(d: Path, title: str, box: np.ndarray, ds, per: dict, patterns: dict
     fig.colorbar(im, ax=axes[:, 0], label="contact pressure [MPa] (edge peaks saturate)", shrink=0.8, extend="max")
     fig.suptitle(f"{title}: bearing pattern on the gear flank, axial section", fontsize=10)
     fig.savefig(d / "bearing_pattern.png", dpi=120)
+    files.append("bearing_pattern.png")
 
     fig = Figure(figsize=(8, 3.6))
     ax = fig.add_subplot()
@@ -90,4 +89,5 @@ def plot_all(d: Path, title: str, box: np.ndarray, ds, per: dict, patterns: dict
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(d / "load_sharing.png", dpi=120)
-    return list(FILES)
+    files.append("load_sharing.png")
+    return files

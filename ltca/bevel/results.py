@@ -17,7 +17,6 @@ from scipy.interpolate import griddata
 
 from ltca.geometry.bevel.tca import RAD_PER_ARCSEC, tca
 
-from ..file_jobs import FileJobs
 from .loaded import BevelPosition
 from .loaded_model import LOADED
 
@@ -181,21 +180,17 @@ def bevel_dataset(case, pair, asm, fid, runs: dict, torques, timings: dict) -> t
     return ds, summary, dict(per=per, patterns=patterns, outlines=outlines, paths=paths)
 
 
-def write_files(d: Path, case, pair, ds: xr.Dataset, plotdata: dict, runs: dict, torques,
-                jobs: FileJobs | None = None) -> list[str]:
-    """results.nc, the bearing-pattern VTU per torque and the plots of a bevel run, into the folder ``d``, written by
-    ``jobs`` (:mod:`ltca.file_jobs`; default: at once, here); returns the plots' file names."""
+def write_files(d: Path, case, pair, ds: xr.Dataset, plotdata: dict, runs: dict, torques) -> list[str]:
+    """results.nc, the bearing-pattern VTU per torque and the plots of a bevel run, into the folder ``d``."""
     from ..outputs import write_netcdf_atomic
-    from .plots import FILES, gear_outline, plot_all
-    jobs = jobs or FileJobs()
+    from .plots import plot_all
     for side, rr in runs.items():
         for T in torques:
             if T in rr:
-                _write_vtu(d / f"bearing_pattern_{T:g}Nm.vtu", rr[T], jobs)
-    jobs.submit(write_netcdf_atomic, d / "results.nc", ds)            # in memory first: HDF5 aborts on ENOSPC
-    jobs.submit(plot_all, d, case.name, gear_outline(pair), ds, plotdata["per"], plotdata["patterns"],
-                plotdata["outlines"], plotdata["paths"])
-    return list(FILES)
+                _write_vtu(d / f"bearing_pattern_{T:g}Nm.vtu", rr[T])
+    write_netcdf_atomic(d / "results.nc", ds)            # in memory first: HDF5 aborts on ENOSPC
+    return plot_all(d, case.name, pair, ds, plotdata["per"], plotdata["patterns"], plotdata["outlines"],
+                    plotdata["paths"], runs)
 
 
 def _torque_summary(a: dict, runs: dict, T: float) -> dict:
@@ -218,7 +213,7 @@ def _torque_summary(a: dict, runs: dict, T: float) -> dict:
                 pinion_torque_balance=[float(a["pinion_balance"].min()), float(a["pinion_balance"].max())])
 
 
-def _write_vtu(path: Path, res: list[BevelPosition], jobs: FileJobs) -> None:
+def _write_vtu(path: Path, res: list[BevelPosition]) -> None:
     """Cells of all positions as a point cloud on pinion tooth 0 (pinion body frame): pressure, position, pair."""
     import meshio
 
@@ -228,4 +223,4 @@ def _write_vtu(path: Path, res: list[BevelPosition], jobs: FileJobs) -> None:
     data = {"pressure_MPa": np.concatenate([r.pressure[k] for r, k in zip(res, m)]),
             "position": np.concatenate([np.full(k.sum(), i, float) for i, k in enumerate(m)]),
             "pair": np.concatenate([r.pair[k].astype(float) for r, k in zip(res, m)])}
-    jobs.submit(write_vtu_file, path, meshio.Mesh(pts, [("vertex", np.arange(len(pts))[:, None])], point_data=data))
+    write_vtu_file(path, meshio.Mesh(pts, [("vertex", np.arange(len(pts))[:, None])], point_data=data))

@@ -12,7 +12,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ..file_jobs import FileJobs
 from ..html_page import embedded_plots, render_page
 
 __all__ = ["PLOTS", "report_context", "render_report", "write_run_report"]
@@ -92,12 +91,10 @@ def render_report(context: dict) -> str:
 
 
 def write_run_report(stage: Path, lm, case_path: str, head: dict, ds, n_pos: int, fidelity: str,
-                     unconverged: list[str], timings: dict, paraview: str | None = None,
-                     jobs: FileJobs | None = None) -> dict:
+                     unconverged: list[str], timings: dict, paraview: str | None = None) -> dict:
     """The report's own plot (bearing pattern against diameter), its ISO comparisons and striping indices, and
     ``report.html``, all into ``stage`` beside the run's other plots; returns {"comparisons", "striping"} (for
-    summary.json). ``ds`` is the run dataset (every torque), ``timings`` {stage: s} shown on the page; the page
-    embeds the plots, so every job of ``jobs`` (:mod:`ltca.file_jobs`) is waited for first."""
+    summary.json). ``ds`` is the run dataset (every torque), ``timings`` {stage: s} shown on the page."""
     from ..outputs import atomic_path
     from .derived import derived_geometry
     from .iso6336 import iso_comparisons
@@ -109,8 +106,6 @@ def write_run_report(stage: Path, lm, case_path: str, head: dict, ds, n_pos: int
     comparisons = iso_comparisons(lm, ds, geometry["eps_alpha"])
     striping = {float(t): striping_index(ds.pressure.sel(torque=t).max(("position", "pinion_tooth")).values)
                 for t in ds.torque.values}
-    if jobs is not None:
-        jobs.wait()
     ctx = report_context(model.case, case_path, head, geometry, comparisons, striping, Path(stage), timings, n_pos,
                          fidelity, unconverged, paraview)
     with atomic_path(Path(stage) / "report.html") as tmp:

@@ -22,7 +22,6 @@ import numpy as np
 from ltca.geometry.cylindrical import flank_point_normal
 from ltca.geometry.pair import rotation_z
 
-from ..file_jobs import FileJobs
 from ..paraview import BodyPart, flank_mesh, select_steps
 from ..paraview import write_series as write_pvd
 from .loaded import PositionResult, weights_of
@@ -67,9 +66,8 @@ def _flank_surface(lm: LoadedModel, step: float) -> tuple[np.ndarray, np.ndarray
 
 
 def write_series(out: Path, lm: LoadedModel, results: list[PositionResult], torque: float,
-                 steps: int | None = None, comment: str | None = None, jobs: FileJobs | None = None) -> dict:
-    """Write ``paraview.pvd`` and its VTU parts for ``results`` (one torque, N mm) into ``out`` (module docstring);
-    ``jobs`` writes the VTU files (:mod:`ltca.file_jobs`).
+                 steps: int | None = None, comment: str | None = None) -> dict:
+    """Write ``paraview.pvd`` and its VTU parts for ``results`` (one torque, N mm) into ``out`` (module docstring).
 
     Returns ``{"pvd": path, "steps": [position index], "roll_deg": [...], "flank_peak_mpa": [...], "files": n}``."""
     model = lm.model
@@ -97,6 +95,6 @@ def write_series(out: Path, lm: LoadedModel, results: list[PositionResult], torq
                              ("gear", bodies[1].mesh(U[1][:, j], frame2)),
                              ("flank", flank_mesh(pts, quads, p, frame1))]
     text = comment or f"{model.case.name}, {torque * 1e-3:g} N m; timestep = pinion roll from the pitch point, deg"
-    pv = write_pvd(out, parts(), text, jobs)
+    pv = write_pvd(out, parts(), text)
     return {"pvd": pv["pvd"], "steps": [int(k) for k in pick], "roll_deg": [float(rolls[k]) for k in pick],
             "flank_peak_mpa": peaks, "files": pv["files"]}

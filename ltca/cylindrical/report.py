@@ -7,7 +7,6 @@ import numpy as np
 import xarray as xr
 
 from .. import figures as plt
-from ..file_jobs import FileJobs
 
 __all__ = ["plot_all", "plot_data", "write_vtu"]
 
@@ -181,19 +180,17 @@ def plot_all(ds: xr.Dataset, out: Path, title: str) -> list[Path]:
     return files
 
 
-def write_vtu(path: Path, body, grid_force: np.ndarray, frame: np.ndarray, jobs: FileJobs | None = None) -> None:
+def write_vtu(path: Path, body, grid_force: np.ndarray, frame: np.ndarray) -> None:
     """One body's mesh with the displacement of a loaded position, in the world frame, as VTU.
 
     ``grid_force`` (n_grid,) are the cell forces gathered on the body's compliance grid; the load is
-    re-applied to the factorised model once (patch loads), so the field is the FE solution itself. ``jobs``
-    writes the file (:mod:`ltca.file_jobs`; default: at once, here)."""
+    re-applied to the factorised model once (patch loads), so the field is the FE solution itself."""
     import meshio
 
     from ..vtu import write_vtu_file
     u = body.factorization.solve(body.patch @ grid_force).reshape(-1, 3)
     R, t = frame[:3, :3], frame[:3, 3]
     pts = body.mesh.nodes @ R.T + t
-    mesh = meshio.Mesh(pts, [("tetra10", body.mesh.tets)],
-                       point_data={"displacement_mm": u @ R.T,
-                                   "displacement_magnitude_um": 1e3 * np.linalg.norm(u, axis=1)})
-    (jobs or FileJobs()).submit(write_vtu_file, path, mesh)
+    write_vtu_file(path, meshio.Mesh(pts, [("tetra10", body.mesh.tets)],
+                                     point_data={"displacement_mm": u @ R.T,
+                                                 "displacement_magnitude_um": 1e3 * np.linalg.norm(u, axis=1)}))

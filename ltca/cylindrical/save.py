@@ -9,7 +9,6 @@ import numpy as np
 
 from ltca.geometry.pair import rotation_z
 
-from ..file_jobs import FileJobs
 from .analysis import CylindricalRun
 from .loaded import weights_of
 
@@ -17,7 +16,7 @@ __all__ = ["write_outputs"]
 
 
 def write_outputs(run: CylindricalRun, head: dict, stage: Path, case_file: str, report: bool = True,
-                  paraview_steps: int = 10, jobs: FileJobs | None = None) -> None:
+                  paraview_steps: int = 10) -> None:
     """Write every file of the run but summary.json into ``stage``; ``head`` (the summary to be written) gains
     what the writers find: ``paraview``, ``iso6336``, ``striping_index`` and their timings.
 
@@ -32,29 +31,24 @@ def write_outputs(run: CylindricalRun, head: dict, stage: Path, case_file: str, 
         Write report.html and its plot.
     paraview_steps : int
         Positions of the first torque in the ParaView series (0: none).
-    jobs : FileJobs, optional
-        Writes results.nc, the plots and the VTU files (:mod:`ltca.file_jobs`); default: at once, here. The
-        report, which embeds the plots, waits for them.
     """
     from ..outputs import write_netcdf_atomic
     from .report import plot_all, write_vtu
     from .sweep import NC_ENCODING
     lm, model, case = run.lm, run.lm.model, run.plan.case
-    jobs = jobs or FileJobs()
-    jobs.submit(write_netcdf_atomic, stage / "results.nc", run.dataset, NC_ENCODING)   # in memory first: HDF5 aborts on ENOSPC
-    jobs.submit(plot_all, run.dataset, stage, case.name)
+    write_netcdf_atomic(stage / "results.nc", run.dataset, NC_ENCODING)   # in memory first: HDF5 aborts on ENOSPC
+    plot_all(run.dataset, stage, case.name)
     first = run.results[0]
     k = int(np.argmax(run.datasets[0].max_pressure.values))
     r = first[k]
     W1, W2 = weights_of(lm, r)
-    write_vtu(stage / "pinion_loaded.vtu", lm.body1, W1.T @ r.force, rotation_z(model.phi_pitch - r.roll), jobs)
-    write_vtu(stage / "gear_loaded.vtu", lm.body2, W2.T @ r.force, model.pair.gear_frame(model.phi_pitch - r.roll),
-              jobs)
+    write_vtu(stage / "pinion_loaded.vtu", lm.body1, W1.T @ r.force, rotation_z(model.phi_pitch - r.roll))
+    write_vtu(stage / "gear_loaded.vtu", lm.body2, W2.T @ r.force, model.pair.gear_frame(model.phi_pitch - r.roll))
     pv = None
     if paraview_steps:
         from .paraview import write_series
         t0 = time.perf_counter()
-        pv = write_series(stage, lm, first, case.torques[0], steps=paraview_steps, jobs=jobs)
+        pv = write_series(stage, lm, first, case.torques[0], steps=paraview_steps)
         head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
         head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": case.torques[0] * 1e-3,
                            "roll_deg": pv["roll_deg"], "flank_peak_mpa": pv["flank_peak_mpa"]}
@@ -63,7 +57,7 @@ def write_outputs(run: CylindricalRun, head: dict, stage: Path, case_file: str, 
         t0 = time.perf_counter()
         extra = write_run_report(stage, lm, case_file, head, run.dataset, run.plan.positions,
                                  run.plan.fidelity_name, run.unconverged, head["timings_s"],
-                                 "paraview.pvd" if pv else None, jobs)
+                                 "paraview.pvd" if pv else None)
         head["timings_s"]["report"] = round(time.perf_counter() - t0, 3)
         head["iso6336"] = extra["comparisons"]
         head["striping_index"] = {f"{t:g}": round(v, 4) for t, v in extra["striping"].items()}

@@ -15,17 +15,14 @@ __all__ = ["Analysis", "figures_from"]
 class Analysis:
     """What a gear kind supplies: ``plan(case, fidelity, positions, torques_nm, max_output_gb)`` (validate and
     size, no FE work), ``execute(plan, progress, cache, store)`` (the analysis; returns the kind's run record),
-    ``result(case, run)`` (its LoadedResult), ``write(result, head, stage, case_file, report, paraview_steps, jobs)``
-    (its files, summary.json excepted; the files it hands to ``jobs``, a :class:`ltca.file_jobs.FileJobs`, may be
-    written by another process), ``bodies(run)`` (the FE bodies' compliance records, for the run's log) and
-    ``writers`` (the modules whose functions ``write`` hands to ``jobs``: a background writer imports them first)."""
+    ``result(case, run)`` (its LoadedResult), ``write(result, head, stage, case_file, report, paraview_steps)``
+    (its files, summary.json excepted) and ``bodies(run)`` (the FE bodies' compliance records, for the run's log)."""
     plan: Callable
     execute: Callable
     result: Callable
     write: Callable
     resumable: bool
     bodies: Callable = lambda run: ()
-    writers: tuple[str, ...] = ()
 
 
 def figures_from(rec: dict) -> TorqueFigures:

@@ -6,7 +6,6 @@ from pathlib import Path
 
 from ..bevel import analysis
 from ..cases import Case
-from ..file_jobs import FileJobs
 from ..results import LoadedResult
 from . import Analysis, figures_from
 
@@ -28,25 +27,23 @@ def _result(case: Case, run: analysis.BevelRun) -> LoadedResult:
                         timings=dict(run.timings), _state=run, _writer=_write)
 
 
-def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int,
-           jobs: FileJobs):
+def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
     from ..bevel.results import write_files
     run = result._state
     head["plots"] = write_files(stage, run.plan.case, run.pair, result.dataset, run.plotdata, run.runs,
-                                run.plan.torques_nm, jobs)
+                                run.plan.torques_nm)
     if paraview_steps:
         from ..bevel.paraview import write_series
         t0 = time.perf_counter()
         T = run.plan.torques_nm[0]
         rr = run.runs["concave" if T > 0 else "convex"]
         pv = write_series(stage, rr["lm"], rr[T], result.dataset.cycle.values, T, steps=paraview_steps,
-                          name=run.plan.case.name, jobs=jobs)
+                          name=run.plan.case.name)
         head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
         head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": T, "cycle": pv["cycle"],
                             "flank_peak_mpa": pv["flank_peak_mpa"]}
     if report:
         from ..bevel.html_report import write_bevel_report
-        jobs.wait()                          # the page embeds the plots
         write_bevel_report(stage, run.plan.case, run.pair, head, case_file)
 
 
@@ -55,4 +52,4 @@ def _bodies(run: analysis.BevelRun) -> tuple:
 
 
 ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True,
-                    bodies=_bodies, writers=("ltca.bevel.plots", "ltca.outputs", "ltca.vtu", "h5netcdf"))
+                    bodies=_bodies)

@@ -5,7 +5,6 @@ from pathlib import Path
 
 from ..cases import Case
 from ..cylindrical import analysis
-from ..file_jobs import FileJobs
 from ..results import LoadedResult
 from . import Analysis, figures_from
 
@@ -25,12 +24,10 @@ def _result(case: Case, run: analysis.CylindricalRun) -> LoadedResult:
                         _state=run, _writer=_write)
 
 
-def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int,
-           jobs: FileJobs):
+def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
     from ..cylindrical.save import write_outputs
-    write_outputs(result._state, head, stage, case_file, report=report, paraview_steps=paraview_steps, jobs=jobs)
+    write_outputs(result._state, head, stage, case_file, report=report, paraview_steps=paraview_steps)
 
 
 ANALYSIS = Analysis(plan=_plan, execute=analysis.execute, result=_result, write=_write, resumable=True,
-                    bodies=lambda run: (run.lm.body1, run.lm.body2),
-                    writers=("ltca.cylindrical.report", "ltca.outputs", "ltca.vtu", "h5netcdf"))
+                    bodies=lambda run: (run.lm.body1, run.lm.body2))

@@ -14,7 +14,6 @@ import xarray as xr
 
 from ..cases import Case
 from ..cylindrical.tca import ARCSEC_PER_RAD
-from ..file_jobs import FileJobs
 from ..planetary import analysis as prun
 from ..results import LoadedResult
 from . import Analysis, figures_from
@@ -91,8 +90,7 @@ def _result(case: Case, run: prun.PlanetaryRun) -> LoadedResult:
                         timings=dict(run.timings), _state=run, _writer=_write)
 
 
-def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int,
-           jobs: FileJobs):
+def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report: bool, paraview_steps: int):
     run = result._state
     prun.write_files(run, stage, result.dataset)
     if paraview_steps:
@@ -101,11 +99,11 @@ def _write(result: LoadedResult, head: dict, stage: Path, case_file: str, report
         T = run.torques[0]
         pv = write_series(stage, run.lm, run.results[0], T, steps=paraview_steps,
                           comment=f"{run.plan.case.name}, satellite torque {T * 1e-3:g} N m, drive direction; "
-                                  "timestep = satellite angle, deg", jobs=jobs)
+                                  "timestep = satellite angle, deg")
         head["timings_s"]["paraview"] = round(time.perf_counter() - t0, 3)
         head["paraview"] = {"pvd": "paraview.pvd", "torque_nm": T * 1e-3, "position_deg": pv["roll_deg"],
                             "flank_peak_mpa": pv["flank_peak_mpa"]}
 
 
 ANALYSIS = Analysis(plan=_plan, execute=prun.execute, result=_result, write=_write, resumable=True,
-                    bodies=lambda run: (run.lm.body1, run.lm.body2), writers=("ltca.vtu",))
+                    bodies=lambda run: (run.lm.body1, run.lm.body2))
