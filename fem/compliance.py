@@ -38,7 +38,7 @@ from .loads import patch_loads, patch_quadrature
 from .periodic import periodic_offsets, turn_z, voigt_turn
 from .readout import interpolation_matrix, nodal_stress, stress_matrix
 from .serendipity import assemble_hex20, tet_interpolation
-from .solids import BodyMesh, GearBodySpec, build_gear_body
+from .solids import BodyMesh, GearBodySpec, build_gear_body, gmsh_session
 from .solver import SubspaceFactorization, factorize
 
 __all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "pair_compliance", "flank_compliance", "principal_max",
@@ -253,7 +253,8 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
 
 def pair_compliance(profiles, specs, cache_dir=None, progress=None) -> tuple[BodyCompliance, BodyCompliance]:
     """Both bodies of a pair, the second one meshed (gmsh, one thread) while the first one is assembled, factorised
-    and loaded (PARDISO, both cores); gmsh is only ever called from one thread at a time.
+    and loaded (PARDISO, both cores); gmsh is only ever called from one thread at a time, in a session the main
+    thread opens (:mod:`ltca.fem.solids.session`: the process keeps its SIGTERM handler).
 
     Parameters
     ----------
@@ -269,11 +270,12 @@ def pair_compliance(profiles, specs, cache_dir=None, progress=None) -> tuple[Bod
     from concurrent.futures import ThreadPoolExecutor
 
     (p1, p2), (s1, s2) = profiles, specs
-    mesh1 = build_gear_body(body_spec(p1, s1), cache_dir=cache_dir)
-    with ThreadPoolExecutor(1, thread_name_prefix="ltca-mesh") as pool:
-        mesh2 = pool.submit(build_gear_body, body_spec(p2, s2), cache_dir)
-        body1 = body_compliance(p1, s1, cache_dir, progress, mesh=mesh1)
-        body2 = body_compliance(p2, s2, cache_dir, progress, mesh=mesh2.result())
+    with gmsh_session():
+        mesh1 = build_gear_body(body_spec(p1, s1), cache_dir=cache_dir)
+        with ThreadPoolExecutor(1, thread_name_prefix="ltca-mesh") as pool:
+            mesh2 = pool.submit(build_gear_body, body_spec(p2, s2), cache_dir)
+            body1 = body_compliance(p1, s1, cache_dir, progress, mesh=mesh1)
+            body2 = body_compliance(p2, s2, cache_dir, progress, mesh=mesh2.result())
     return body1, body2
 
 
