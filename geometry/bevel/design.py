@@ -31,7 +31,7 @@ import numpy as np
 
 from .blank import BevelBlank
 from .machine import FlankCut, MemberCut
-from .synthesis import FlankTarget, _synthesis_at, mean_contact
+from .synthesis import FlankTarget, mean_contact, synthesis_at
 from .tca import RAD_PER_ARCSEC, Assembly, BevelPair, ContactError, TCAResult, contact_path, tca
 
 __all__ = ["path_line", "cycle_metrics", "control_point_design", "synthesize_flank", "synthesize_pinion"]
@@ -133,7 +133,7 @@ def control_point_design(blank: BevelBlank, gear: MemberCut, pinion_side: str, t
 
     def evaluate(cd):
         tg, c = (replace(target, major_axis=cd[0]), start[0]) if fixed else (target, cd[0])
-        fc, info = _synthesis_at(blank, mc, pinion_side, tg, blank_offset, (c, cd[1]), None,
+        fc, info = synthesis_at(blank, mc, pinion_side, tg, blank_offset, (c, cd[1]), None,
                                  last.get("fc", guess), 1e-12)
         last["fc"] = fc
         phi1, _, te, stops = contact_path(_pair(blank, gear, fc), pinion_side, Assembly(), steps_per_cycle=4,

@@ -37,7 +37,7 @@ from .surface_state import cross3, norm3
 from .tca import RAD_PER_ARCSEC, drive_sign, mesh_frames
 
 __all__ = ["FlankTarget", "MeanContact", "second_order", "generated_curvature", "mean_contact",
-           "path_tangent", "pinion_curvature", "local_synthesis", "te_curvature"]
+           "path_tangent", "pinion_curvature", "local_synthesis", "synthesis_at", "te_curvature"]
 
 
 @dataclass(frozen=True)
@@ -295,13 +295,14 @@ def local_synthesis(blank: BevelBlank, gear: MemberCut, pinion_side: str, target
         raise ValueError(f"pinion_side = {pinion_side!r}: allowed 'concave' or 'convex'")
     gear_side = "convex" if pinion_side == "concave" else "concave"
     mc = mean_contact(blank, gear.flank(gear_side))
-    return _synthesis_at(blank, mc, pinion_side, target, blank_offset, modified_roll, edge_radius, guess, tol)
+    return synthesis_at(blank, mc, pinion_side, target, blank_offset, modified_roll, edge_radius, guess, tol)
 
 
-def _synthesis_at(blank: BevelBlank, mc: MeanContact, pinion_side: str, target: FlankTarget,
+def synthesis_at(blank: BevelBlank, mc: MeanContact, pinion_side: str, target: FlankTarget,
                   blank_offset: float | None, modified_roll: tuple[float, float], edge_radius: float | None,
                   guess: FlankCut | None, tol: float) -> tuple[FlankCut, dict]:
-    """:func:`local_synthesis` at the mean contact point ``mc`` of the gear flank (``pinion_side`` checked)."""
+    """:func:`local_synthesis` at a mean contact point ``mc`` of the gear flank found before
+    (:func:`mean_contact`; a design loop finds it once for all its steps). ``pinion_side`` is not checked here."""
     K1, info = pinion_curvature(blank, mc, target)
     sg = 1.0 if pinion_side == "concave" else -1.0
     gm = blank.pinion.root_angle
