@@ -52,7 +52,7 @@ def surface_state(fc: FlankCut, u: np.ndarray, theta: np.ndarray, psi: np.ndarra
     psi = np.asarray(psi, dtype=float)
     c, s = np.cos(theta), np.sin(theta)
     cp, sp = np.cos(psi), np.sin(psi)
-    C, k, O, _ = ms._frame()
+    C, k, O = ms.cutter_center, ms.work_axis, ms.work_origin
     x, y = p.rho * c + C[0], p.rho * s + C[1]
     nx, ny = p.n_rho * c, p.n_rho * s
     rx, ry = cp * x - sp * y, sp * x + cp * y

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SurfaceState", "work_state", "cross3", "norm3"]
+__all__ = ["SurfaceState", "work_state", "cross3", "norm1d"]
 
 
 @dataclass(frozen=True)
@@ -71,7 +71,7 @@ def cross3(a, b) -> np.ndarray:
     return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
 
 
-def norm3(a: np.ndarray) -> float:
+def norm1d(a: np.ndarray) -> float:
     """Euclidean length of a 1-D vector, as np.linalg.norm computes it (the square root of a . a)."""
     return math.sqrt(a.dot(a))
 
@@ -86,7 +86,7 @@ def work_state(ms, d: np.ndarray, r_m: np.ndarray, n_m: np.ndarray, f: np.ndarra
     """The state of generated points given their machine-frame position ``r_m``, normal ``n_m``, offset ``d`` from
     the work origin (..., 3), the meshing function ``f`` and the work roll ``phi``: axial position Z and radius rho
     about the work axis, and with ``with_work`` the point and normal in the work's own frame."""
-    _, k, _, B = ms._frame()
+    k, B = ms.work_axis, ms.work_basis
     Z = d @ k
     rho = np.sqrt(np.maximum(np.einsum("...i,...i", d, d) - Z ** 2, 0.0))
     if with_work:

@@ -33,7 +33,7 @@ from .blank import BevelBlank
 from .cutter import HeadCutter
 from .generation import MeshingError, _guess, solve_axial_points, surface_state
 from .machine import FlankCut, MachineSettings, MemberCut, roll
-from .surface_state import cross3, norm3
+from .surface_state import cross3, norm1d
 from .tca import RAD_PER_ARCSEC, drive_sign, mesh_frames
 
 __all__ = ["FlankTarget", "MeanContact", "second_order", "generated_curvature", "mean_contact",
@@ -197,7 +197,7 @@ def path_tangent(blank: BevelBlank, r2: np.ndarray, n2: np.ndarray, eta2: float)
     dZ, drho = dL * np.cos(g) - dRn * np.sin(g), dL * np.sin(g) + dRn * np.cos(g)
     d = dZ * e_z + drho * e_rho
     e = d - (d @ n2) / (e_th @ n2) * e_th
-    return e / norm3(e)
+    return e / norm1d(e)
 
 
 def pinion_curvature(blank: BevelBlank, mc: MeanContact, target: FlankTarget) -> tuple[np.ndarray, dict]:
@@ -208,7 +208,7 @@ def pinion_curvature(blank: BevelBlank, mc: MeanContact, target: FlankTarget) ->
     dw2 = -drive_sign(mc.r2, mc.n2) * m21 * mc.B2[:, 2]        # m21 in the driven sense (tca.drive_sign)
     b, d0, v12 = second_order(mc.r_h, n, mc.K2_h, mc.w1, mc.O1, mc.w2, mc.O2, dw2=dw2)
     be = b @ e
-    if abs(be) < 1e-12 * norm3(b):
+    if abs(be) < 1e-12 * norm1d(b):
         raise ValueError(f"eta2 = {target.eta2!r}: this path direction is singular (b . e = 0)")
     s = (d0 + b @ v12) / be
     f = cross3(n, e)
@@ -234,7 +234,7 @@ def _placement(P_w, n_w, K_w, gm, sg, rp, XG, XB, Em, C, D, edge_radius):
     P, n, K_goal = O + B @ P_w, B @ n_w, B @ K_w @ B.T
     alpha = float(np.arcsin(np.clip(-n[2], -1.0, 1.0)))
     e_rho = -n[:2] / (sg * np.cos(alpha))
-    e_rho /= norm3(e_rho)
+    e_rho /= norm1d(e_rho)
     depth = -P[2]
     rho = rp + sg * depth * np.tan(alpha)
     c = P[:2] - rho * e_rho
@@ -251,7 +251,7 @@ def _placement(P_w, n_w, K_w, gm, sg, rp, XG, XB, Em, C, D, edge_radius):
     fc = FlankCut(ms, cu)
     K, _ = _generated_machine(fc, u, th, 0.0)
     e1 = cross3(n, (0.0, 1.0, 0.0))
-    e1 /= norm3(e1)
+    e1 /= norm1d(e1)
     e2 = cross3(n, e1)
     dK = K - K_goal
     return fc, u, th, np.array([e1 @ dK @ e1, e1 @ dK @ e2, e2 @ dK @ e2])
@@ -299,8 +299,8 @@ def local_synthesis(blank: BevelBlank, gear: MemberCut, pinion_side: str, target
 
 
 def synthesis_at(blank: BevelBlank, mc: MeanContact, pinion_side: str, target: FlankTarget,
-                  blank_offset: float | None, modified_roll: tuple[float, float], edge_radius: float | None,
-                  guess: FlankCut | None, tol: float) -> tuple[FlankCut, dict]:
+                 blank_offset: float | None, modified_roll: tuple[float, float], edge_radius: float | None,
+                 guess: FlankCut | None, tol: float) -> tuple[FlankCut, dict]:
     """:func:`local_synthesis` at a mean contact point ``mc`` of the gear flank found before
     (:func:`mean_contact`; a design loop finds it once for all its steps). ``pinion_side`` is not checked here."""
     K1, info = pinion_curvature(blank, mc, target)

@@ -25,7 +25,7 @@ import numpy as np
 from .blank import BevelBlank
 from .generation import _guess, solve_axial_points, surface_state
 from .machine import FlankCut, MemberCut
-from .surface_state import _rotz, _rotz_cs, norm3
+from .surface_state import _rotz, _rotz_cs, norm1d
 
 __all__ = ["ContactError", "Assembly", "BevelPair", "TCAResult", "mesh_frames", "to_pitch_coords", "curvature_tensor",
            "drive_sign", "contact_path", "tca", "RAD_PER_ARCSEC"]
@@ -243,7 +243,7 @@ def contact_path(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = 
     def newton(X, phi1):
         # Levenberg-Marquardt: damping keeps steps small along the (near) null direction of line contact
         F = residual(X, phi1)
-        nF = norm3(F)
+        nF = norm1d(F)
         mu = 1e-4
         for _ in range(60):
             if np.abs(F).max() < 1e-10:
@@ -256,10 +256,10 @@ def contact_path(pair: BevelPair, pinion_side: str = "concave", asm: Assembly = 
                 dx = -np.linalg.solve(A + mu * np.diag(np.diag(A) + 1e-12), g)
                 dx *= min(1.0, 0.1 / max(np.abs(dx[angles]).max(), 1e-300))
                 Fn = residual(X + dx, phi1)
-                if norm3(Fn) < nF or mu > 1e8:
+                if norm1d(Fn) < nF or mu > 1e8:
                     break
                 mu *= 10.0
-            X, F, nF = X + dx, Fn, norm3(Fn)
+            X, F, nF = X + dx, Fn, norm1d(Fn)
             mu = max(mu * 0.1, 1e-12)
         return X, bool(np.abs(F).max() < 1e-8)
 
