@@ -38,7 +38,8 @@ from .loads import patch_loads, patch_quadrature
 from .periodic import periodic_offsets, turn_z, voigt_turn
 from .readout import interpolation_matrix, nodal_stress, stress_matrix
 from .serendipity import assemble_hex20, tet_interpolation
-from .solids import BodyMesh, GearBodySpec, build_gear_body, gmsh_session
+from .solids import BodyMesh, GearBodySpec, build_gear_body
+from .solids.mesh_job import BodyMeshJob
 from .solver import SubspaceFactorization, factorize
 
 __all__ = ["ComplianceSpec", "BodyCompliance", "body_compliance", "pair_compliance", "flank_compliance", "principal_max",
@@ -252,9 +253,8 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
 
 
 def pair_compliance(profiles, specs, cache_dir=None, progress=None) -> tuple[BodyCompliance, BodyCompliance]:
-    """Both bodies of a pair, the second one meshed (gmsh, one thread) while the first one is assembled, factorised
-    and loaded (PARDISO, both cores); gmsh is only ever called from one thread at a time, in a session the main
-    thread opens (:mod:`ltca.fem.solids.session`: the process keeps its SIGTERM handler).
+    """Both bodies of a pair: the second one meshed in a child process (:mod:`ltca.fem.solids.mesh_job`) while the
+    first one is meshed, assembled, factorised and loaded here (gmsh on one core, PARDISO on both).
 
     Parameters
     ----------
@@ -267,15 +267,13 @@ def pair_compliance(profiles, specs, cache_dir=None, progress=None) -> tuple[Bod
     -------
     (BodyCompliance, BodyCompliance)
     """
-    from concurrent.futures import ThreadPoolExecutor
-
     (p1, p2), (s1, s2) = profiles, specs
-    with gmsh_session():
-        mesh1 = build_gear_body(body_spec(p1, s1), cache_dir=cache_dir)
-        with ThreadPoolExecutor(1, thread_name_prefix="ltca-mesh") as pool:
-            mesh2 = pool.submit(build_gear_body, body_spec(p2, s2), cache_dir)
-            body1 = body_compliance(p1, s1, cache_dir, progress, mesh=mesh1)
-            body2 = body_compliance(p2, s2, cache_dir, progress, mesh=mesh2.result())
+    job = BodyMeshJob(body_spec(p2, s2), cache_dir)
+    try:
+        body1 = body_compliance(p1, s1, cache_dir, progress)
+        body2 = body_compliance(p2, s2, cache_dir, progress, mesh=job.result())
+    finally:
+        job.cancel()
     return body1, body2
 
 

@@ -1,5 +1,6 @@
 """A process that has meshed keeps its Python SIGTERM handler (gmsh's initialisation installs its own at the C level),
-so ``ltca run`` still records an interrupted run when it is terminated after meshing. Each check runs in a child
+so ``ltca run`` still records an interrupted run when it is terminated after meshing, and it still ignores SIGPIPE
+(gmsh sets it back to the default action, death), so a write to a closed pipe raises BrokenPipeError. Each check runs in a child
 process: a lost handler kills the child, not the test session."""
 from __future__ import annotations
 
@@ -25,7 +26,7 @@ def handled(signum, frame):
 signal.signal(signal.SIGTERM, handled)
 with gmsh_session():                        # opened and closed in the main thread
     pass
-with gmsh_session():                        # a thread's session inside one of the main thread (pair_compliance)
+with gmsh_session():                        # a thread's session inside one of the main thread
     t = threading.Thread(target=lambda: gmsh_session().__enter__())
     t.start()
     t.join()
@@ -37,6 +38,26 @@ signal.pause() if hasattr(signal, "pause") else None
 def test_python_sigterm_handler_survives_gmsh_sessions():
     done = subprocess.run([sys.executable, "-c", _SESSIONS], capture_output=True, text=True, env=ENV, timeout=120)
     assert done.returncode == 7 and "handled" in done.stdout, (done.returncode, done.stderr[-500:])
+
+
+_PIPE = """
+import os
+from ltca.fem.solids import gmsh_session
+
+with gmsh_session():
+    pass
+r, w = os.pipe()
+os.close(r)
+try:
+    os.write(w, b"x")
+except BrokenPipeError:
+    print("raised", flush=True)
+"""
+
+
+def test_write_to_a_closed_pipe_raises_after_a_gmsh_session():
+    done = subprocess.run([sys.executable, "-c", _PIPE], capture_output=True, text=True, env=ENV, timeout=120)
+    assert done.returncode == 0 and "raised" in done.stdout, (done.returncode, done.stderr[-500:])
 
 
 def test_sigterm_after_meshing_leaves_an_interrupted_run(tmp_path):
