@@ -24,6 +24,7 @@ solves, for superposition.
 """
 from __future__ import annotations
 
+import threading
 import time
 from dataclasses import dataclass, field, replace
 
@@ -149,6 +150,11 @@ class BodyCompliance:
                              shape=(n, len(loaded) * ns * nz))
 
 
+#: one factorisation at a time in a process: the back-end runs it on every core, and two side by side would fight for
+#: the cores and hold both working sets at once (:func:`pair_compliance` runs the other body's single-threaded steps
+#: beside it)
+_FACTOR_LOCK = threading.Lock()
+
 #: facet quadrature levels of the cylindrical bodies' patch loads (:func:`flank_compliance`): a patch reaches 0.75 of
 #: the grid spacing, several flank elements, so the 7-point rule per facet already puts hundreds of points on it
 PATCH_REFINE = 0
@@ -253,8 +259,13 @@ def body_compliance(profile, spec: ComplianceSpec, cache_dir=None, progress=None
 
 
 def pair_compliance(profiles, specs, cache_dir=None, progress=None) -> tuple[BodyCompliance, BodyCompliance]:
-    """Both bodies of a pair: the second one meshed in a child process (:mod:`ltca.fem.solids.mesh_job`) while the
-    first one is meshed, assembled, factorised and loaded here (gmsh on one core, PARDISO on both).
+    """Both bodies of a pair, computed side by side on the two cores.
+
+    The second body is meshed in a child process (:mod:`ltca.fem.solids.mesh_job`: gmsh is single-threaded and not
+    thread-safe) while the first one is meshed here; then each body is assembled, set up, factorised and loaded in a
+    thread of its own. The factorisations take turns (one at a time in a process, on every core: they scale well on
+    two, and two at once would hold both working sets); assembly, set-up and read-out are single-threaded, and run
+    beside the other body's factorisation instead of leaving a core idle.
 
     Parameters
     ----------
@@ -269,12 +280,38 @@ def pair_compliance(profiles, specs, cache_dir=None, progress=None) -> tuple[Bod
     """
     (p1, p2), (s1, s2) = profiles, specs
     job = BodyMeshJob(body_spec(p2, s2), cache_dir)
+    second = _Background(lambda: body_compliance(p2, s2, cache_dir, progress, mesh=job.result()))
     try:
+        second.start()
         body1 = body_compliance(p1, s1, cache_dir, progress)
-        body2 = body_compliance(p2, s2, cache_dir, progress, mesh=job.result())
+        body2 = second.result()
     finally:
         job.cancel()
     return body1, body2
+
+
+class _Background:
+    """A call run in a daemon thread (an interrupted run does not wait for it); :meth:`result` joins it and
+    returns its value or raises its exception."""
+
+    def __init__(self, call) -> None:
+        self._call, self._value, self._error = call, None, None
+        self._thread = threading.Thread(target=self._run, name="ltca-body", daemon=True)
+
+    def _run(self) -> None:
+        try:
+            self._value = self._call()
+        except BaseException as exc:       # handed to the caller by result()
+            self._error = exc
+
+    def start(self) -> None:
+        self._thread.start()
+
+    def result(self):
+        self._thread.join()
+        if self._error is not None:
+            raise self._error
+        return self._value
 
 
 def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray, z_grid: np.ndarray,
@@ -330,14 +367,6 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
         K = assemble_hex20(mesh.nodes[hex_nodes], col[mesh.hexes], spec.young, spec.poisson)
         fixed_nodes = col[np.intersect1d(fixed_nodes, hex_nodes)]
     t["assembly"] = time.perf_counter() - t0
-    fixed = (3 * fixed_nodes[:, None] + np.arange(3)).ravel()
-    t0 = time.perf_counter()
-    fact = factorize(K, fixed)
-    if mesh.hexes is not None:
-        fact = SubspaceFactorization(fact, T)
-    t["factorisation"] = time.perf_counter() - t0
-    say(f"assembled ({t['assembly']:.1f} s) and factorised with {fact.method} ({t['factorisation']:.1f} s)")
-
     # ---- the flank grid, its depth points and the patch loads
     t0 = time.perf_counter()
     nz = len(z_grid)
@@ -377,6 +406,16 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
     else:
         S = stress_matrix(mesh.nodes, mesh.tets, spec.young, spec.poisson, R)
     t["setup"] = time.perf_counter() - t0
+    fixed = (3 * fixed_nodes[:, None] + np.arange(3)).ravel()
+    with _FACTOR_LOCK:
+        t0 = time.perf_counter()
+        fact = factorize(K, fixed)
+        t["factorisation"] = time.perf_counter() - t0
+    n_dofs = K.shape[0]
+    del K                                  # the factor holds what the solves need
+    if mesh.hexes is not None:
+        fact = SubspaceFactorization(fact, T)
+    say(f"assembled ({t['assembly']:.1f} s) and factorised with {fact.method} ({t['factorisation']:.1f} s)")
     t0 = time.perf_counter()
     out = fact.solve(F[:, cols], observe=sp.vstack([O, S]).tocsr())
     t["solves"] = time.perf_counter() - t0
@@ -415,7 +454,7 @@ def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray,
     # so that the contact matrix stays symmetric positive definite.
     C = 0.5 * (C + C.T)
     return BodyCompliance(spec, s_grid, z_grid, C, depth, R, np.asarray(root_tooth, int), stress,
-                          K.shape[0], mesh, fact, F, t)
+                          n_dofs, mesh, fact, F, t)
 
 
 def _tooth_quadrature(quadrature, tooth: int, m: int):
