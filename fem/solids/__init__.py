@@ -9,7 +9,7 @@ the outer rim), optionally refined around contact lines (:mod:`ltca.fem.solids.r
 (:mod:`ltca.fem.solids.full_gear`, :mod:`ltca.fem.solids.bevel_occ`), which :mod:`ltca.fem.solids.step` also writes as
 STEP files. The shared gmsh steps (fresh model, size field,
 meshing and read-back) are :mod:`ltca.fem.solids.gmsh_mesh`, the plane geometry of transverse sections
-:mod:`ltca.fem.solids.planar`.
+:mod:`ltca.fem.solids.planar`; :mod:`ltca.fem.solids.mesh_job` meshes a gear body in a child process.
 
 Imports numpy and gmsh only (and geometry); nothing else of fem, nothing of ltca.
 """
