@@ -42,6 +42,7 @@ import numpy as np
 
 from .blank import BevelBlank
 from .cutter import HeadCutter
+from .surface_state import cross3
 
 MOTIONS = ("radial_motion", "vertical_motion", "helical_motion", "tilt_motion", "swivel_motion")
 """Fields of :class:`MachineSettings` that hold the derivatives (orders 1..6) of a setting by the cradle roll."""
@@ -173,8 +174,7 @@ class MachineSettings:
             k = np.array([np.cos(self.root_angle), 0.0, np.sin(self.root_angle)])
             origin = np.array([0.0, self.blank_offset, self.sliding_base]) + self.center_to_back * k
             y = np.array([0.0, 1.0, 0.0])
-            x = np.array([y[1] * k[2] - y[2] * k[1], y[2] * k[0] - y[0] * k[2], y[0] * k[1] - y[1] * k[0]])
-            f = (centre, k, origin, np.stack([x, y, k], axis=1))
+            f = (centre, k, origin, np.stack([cross3(y, k), y, k], axis=1))
             for a in f:
                 a.flags.writeable = False
             object.__setattr__(self, "_frame_arrays", f)

@@ -239,8 +239,8 @@ def test_mean_mesh_stiffness_in_iso_band(name, bore1, tmp_path):
 
 
 def test_pair_compliance_meshes_the_second_body_beside_the_first(fzg_model):
-    """Both bodies of a pair, the gear meshed in a second thread while the pinion is solved: the same compliance as
-    one body after the other (gmsh is called from one thread at a time; its meshes are deterministic)."""
+    """Both bodies of a pair, the gear meshed in a child process while the pinion is meshed, then each solved in its
+    own thread: the same compliance as one body after the other (gmsh's meshes are deterministic)."""
     from ltca.fem.compliance import ComplianceSpec, body_compliance, pair_compliance
     m = fzg_model
 
