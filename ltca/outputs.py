@@ -27,11 +27,11 @@ import pickle
 import signal
 import socket
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any, Iterator
 
 from .errors import CaseError
 
-__all__ = ["check_out_dir", "take_or_solve", "RunDir", "atomic_path", "write_json_atomic", "write_bytes_atomic", "write_netcdf_atomic",
+__all__ = ["check_out_dir", "RunDir", "atomic_path", "write_json_atomic", "write_bytes_atomic", "write_netcdf_atomic",
            "netcdf_bytes", "check_free_space", "PositionStore", "finite_json", "read_status", "OUTPUTS", "staging",
            "signature_of", "write_json"]
 
@@ -374,28 +374,6 @@ class PositionStore:
         """The log of the positions taken over by --resume, in order (drops a torn last line)."""
         write_bytes_atomic(self.log, "".join(json.dumps(finite_json(x), allow_nan=False) + "\n"
                                              for x in lines).encode())
-
-
-def take_or_solve(store: "PositionStore | None", it: int, k: int, solve: Callable[[], Any],
-                  line_of: Callable[[Any], dict], lines: list) -> Any:
-    """Position ``k`` of torque ``it`` of every kind's position loop: taken over from ``store`` where an interrupted
-    run finished it, else ``solve()`` and stored. Its log record ``line_of(result)`` goes to ``lines``; before the
-    first new position after positions taken over, the log is rewritten from ``lines`` (a torn last line dropped)."""
-    old = store.load(it, k) if store is not None else None
-    result = old if old is not None else solve()
-    lines.append(line_of(result))
-    if store is None:
-        return result
-    if old is not None:
-        store.taken_over += 1
-        store.dirty = True
-    else:
-        if store.dirty:
-            store.rewrite_log(lines[:-1])
-            store.dirty = False
-        store.save(it, k, result, lines[-1])
-        store.computed += 1
-    return result
 
 
 @contextlib.contextmanager

@@ -15,7 +15,7 @@ from ltca.geometry.bevel.tca import RAD_PER_ARCSEC as ARCSEC
 from ltca.geometry.bevel.tca import Assembly, BevelPair, ContactError
 
 from ..errors import CaseError
-from ..outputs import take_or_solve
+from ..position_runs import solve_positions
 from ..validation import DesignError
 from .case import BevelCase, case_blank, check_bevel_torques
 from .limits import BevelDesignLimit, working_values
@@ -77,23 +77,29 @@ def cycle_positions(n: int, z1: int) -> np.ndarray:
 
 
 def analyse_torque(lm, phi: np.ndarray, torque_nm: float, progress=None, store=None, it: int = 0,
-                   lines: list | None = None) -> list[BevelPosition]:
+                   lines: list | None = None, threads: int = 1) -> list[BevelPosition]:
     """The loaded contact at the pinion angles ``phi`` under |torque_nm| (N m) on the model's flank.
 
     ``progress`` (a callable) receives a line per position; ``store`` (:class:`ltca.outputs.PositionStore`) keeps
-    each finished position and takes over those an interrupted run finished (torque index ``it``)."""
-    out = []
+    each finished position and takes over those an interrupted run finished (torque index ``it``); ``threads`` runs
+    of consecutive positions are solved side by side (:func:`ltca.position_runs.solve_positions`)."""
+    from threadpoolctl import threadpool_limits
     t0 = time.perf_counter()
-    for k, p in enumerate(phi):
-        r = take_or_solve(store, it, k, lambda: solve_position(lm, float(p), abs(torque_nm) * 1e3),
-                          lambda res: {"torque_nm": torque_nm, "phi1_deg": float(np.degrees(res.phi1)),
-                                       "te_loaded_arcsec": -res.te / ARCSEC, "max_pressure_mpa": float(res.max_pressure),
-                                       "torque_residual": float(res.torque_residual)}, lines if lines is not None else [])
-        out.append(r)
+    count = [0]
+
+    def done(k: int, r: BevelPosition) -> None:
+        count[0] += 1
         if progress:
-            progress(f"{FLANK[lm.side]} {torque_nm:g} N m: position {k + 1}/{len(phi)}  TE {-r.te / ARCSEC:8.2f} "
+            progress(f"{FLANK[lm.side]} {torque_nm:g} N m: position {count[0]}/{len(phi)}  TE {-r.te / ARCSEC:8.2f} "
                      f"arcsec  p_max {r.max_pressure:7.0f} MPa  ({time.perf_counter() - t0:.1f} s)")
-    return out
+
+    def line(k: int, res: BevelPosition) -> dict:
+        return {"torque_nm": torque_nm, "phi1_deg": float(np.degrees(res.phi1)), "te_loaded_arcsec": -res.te / ARCSEC,
+                "max_pressure_mpa": float(res.max_pressure), "torque_residual": float(res.torque_residual)}
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        return solve_positions(len(phi), lambda k, warm: solve_position(lm, float(phi[k]), abs(torque_nm) * 1e3),
+                               line, store=store, it=it, lines=lines, threads=threads, done=done)
 
 
 @dataclass(frozen=True)

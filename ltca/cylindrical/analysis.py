@@ -98,6 +98,7 @@ def execute(p: CylindricalPlan, progress: Callable[[str], None] | None = None, c
     ``progress`` receives one line per stage and turns on the per-position bar; ``store``
     (:class:`ltca.outputs.PositionStore`) keeps each finished position and takes over those of an interrupted run.
     """
+    from ..position_runs import thread_count
     from .sweep import run_dataset, torque_record
     from .warnings import convergence_warnings, pressure_warnings
     t_start = time.perf_counter() - p.t_geometry
@@ -113,7 +114,8 @@ def execute(p: CylindricalPlan, progress: Callable[[str], None] | None = None, c
     warnings = list(p.warnings)
     for it, torque in enumerate(case.torques):
         t0 = time.perf_counter()
-        res = analyse(lm, rolls, torque, progress is not None, None, store=store, it=it, lines=lines)
+        res = analyse(lm, rolls, torque, progress is not None, None, store=store, it=it, lines=lines,
+                      threads=thread_count())
         results.append(res)
         t_contact = time.perf_counter() - t0
         ds = position_dataset(lm, res, torque)

@@ -33,34 +33,41 @@ def log_line(lm: LoadedModel, torque: float, warm: PositionResult) -> dict:
 
 
 def analyse(lm: LoadedModel, rolls: np.ndarray, torque: float, progress: bool = False,
-            log: Path | None = None, store=None, it: int = 0, lines: list | None = None) -> list[PositionResult]:
+            log: Path | None = None, store=None, it: int = 0, lines: list | None = None,
+            threads: int = 1) -> list[PositionResult]:
     """Loaded contact at every roll angle, warm-started from the previous position.
 
     With ``log``, each finished position is appended to that JSON-lines file at once, so a crash
     loses nothing already finished. With ``store`` (:class:`ltca.outputs.PositionStore`), each finished position is
-    also kept whole, and positions already in the store (``--resume``) are taken over instead of computed."""
+    also kept whole, and positions already in the store (``--resume``) are taken over instead of computed.
+    ``threads`` runs of consecutive positions are solved side by side (:func:`ltca.position_runs.solve_positions`)."""
     from threadpoolctl import threadpool_limits
 
-    from ..outputs import take_or_solve
+    from ..position_runs import solve_positions
     from .tca import split_roll
-    out: list[PositionResult] = []
     steps = list(zip(*split_roll(lm.model, np.asarray(rolls))))
+    bar = None
     if progress:
         from tqdm import tqdm
-        steps = tqdm(steps, desc=f"positions at {torque * 1e-3:g} N m", unit="pos", file=sys.stderr)
-    warm = None
+        bar = tqdm(total=len(steps), desc=f"positions at {torque * 1e-3:g} N m", unit="pos", file=sys.stderr)
+
+    def done(k: int, res: PositionResult) -> None:
+        if log is not None and store is None:
+            with open(log, "a") as fh:
+                fh.write(json.dumps(log_line(lm, torque, res)) + "\n")
+        if bar is not None:
+            bar.update(1)
+
+    def solve(k: int, warm: PositionResult | None) -> PositionResult:
+        r, n = steps[k]
+        return solve_position(lm, float(r), torque, warm=warm, cycle=int(n))
+
     # small dense factorisations: one BLAS thread is faster than two fighting for the cores (the limit is set once
     # for the loop: setting it inspects the loaded libraries, ~3 ms a position)
-    with threadpool_limits(limits=1, user_api="blas"):
-        for k, (r, n) in enumerate(steps):
-            if store is not None:
-                warm = take_or_solve(store, it, k, lambda: solve_position(lm, float(r), torque, warm=warm,
-                                                                          cycle=int(n)),
-                                     lambda res: log_line(lm, torque, res), lines)
-            else:
-                warm = solve_position(lm, float(r), torque, warm=warm, cycle=int(n))
-                if log is not None:
-                    with open(log, "a") as fh:
-                        fh.write(json.dumps(log_line(lm, torque, warm)) + "\n")
-            out.append(warm)
-    return out
+    try:
+        with threadpool_limits(limits=1, user_api="blas"):
+            return solve_positions(len(steps), solve, lambda k, res: log_line(lm, torque, res), store=store, it=it,
+                                   lines=lines, threads=threads, done=done)
+    finally:
+        if bar is not None:
+            bar.close()

@@ -35,7 +35,7 @@ from ltca.geometry.cylindrical import arc_length
 from ..cylindrical.loaded import solve_position
 from ..cylindrical.loaded_model import Fidelity, LoadedModel, hertz_line
 from ..cylindrical.tca import flank_gaps
-from ..outputs import take_or_solve
+from ..position_runs import solve_positions
 from .model import SatelliteModel
 
 __all__ = ["C_PRIME", "positions", "teeth_in_mesh", "prepare_satellite", "solve_cycle"]
@@ -114,7 +114,7 @@ class _Start:
 
 
 def solve_cycle(lm: LoadedModel, sm: SatelliteModel, phis: np.ndarray, torque: float, store=None, it: int = 0,
-                lines: list | None = None, progress=None) -> list:
+                lines: list | None = None, progress=None, threads: int = 1) -> list:
     """Drive-direction contact (:class:`ltca.cylindrical.loaded.PositionResult`) at each position phi
     (roll = phi, :mod:`.model`) under ``torque`` (N mm, > 0), warm-started along the cycle.
 
@@ -122,18 +122,25 @@ def solve_cycle(lm: LoadedModel, sm: SatelliteModel, phis: np.ndarray, torque: f
     first contact (half the backlash) plus a single-pair deflection. ``store`` (:class:`ltca.outputs.PositionStore`)
     keeps each finished position (torque index ``it``) and gives back those an interrupted run finished: a position
     taken over is the next one's warm start, as it was, so a resumed cycle is the uninterrupted one bit for bit.
-    ``lines`` receives a record per position; ``progress`` (a callable) a line per position."""
+    ``lines`` receives a record per position; ``progress`` (a callable) a line per position; ``threads`` runs of
+    consecutive positions are solved side by side, each from its own first start
+    (:func:`ltca.position_runs.solve_positions`)."""
     rb1, b = lm.model.pinion.r_base, lm.model.face_width
-    warm = _Start(-sm.mesh.window(float(phis[0])).drive + torque / (rb1 ** 2 * C_PRIME * b))
-    out = []
-    for k, p in enumerate(phis):
-        warm = take_or_solve(store, it, k, lambda: solve_position(lm, float(p), float(torque), warm=warm),
-                             lambda res: {"torque_nm": torque * 1e-3, "phi_deg": float(np.degrees(p)),
-                                          "te_loaded_arcsec": float((res.theta - res.theta0) * 180 / np.pi * 3600),
-                                          "max_pressure_mpa": float(res.max_pressure),
-                                          "torque_residual": float(res.torque_residual)},
-                             lines if lines is not None else [])
-        out.append(warm)
+
+    def start(k: int) -> _Start:
+        return _Start(-sm.mesh.window(float(phis[k])).drive + torque / (rb1 ** 2 * C_PRIME * b))
+
+    def line(k: int, res) -> dict:
+        return {"torque_nm": torque * 1e-3, "phi_deg": float(np.degrees(phis[k])),
+                "te_loaded_arcsec": float((res.theta - res.theta0) * 180 / np.pi * 3600),
+                "max_pressure_mpa": float(res.max_pressure), "torque_residual": float(res.torque_residual)}
+
+    count = [0]
+
+    def done(k: int, res) -> None:
+        count[0] += 1
         if progress:
-            progress(f"{torque * 1e-3:g} N m: position {k + 1}/{len(phis)}  p_max {warm.max_pressure:7.0f} MPa")
-    return out
+            progress(f"{torque * 1e-3:g} N m: position {count[0]}/{len(phis)}  p_max {res.max_pressure:7.0f} MPa")
+
+    return solve_positions(len(phis), lambda k, warm: solve_position(lm, float(phis[k]), float(torque), warm=warm),
+                           line, store=store, it=it, lines=lines, threads=threads, start=start, done=done)
