@@ -9,4 +9,5 @@
     halfspace   half-space (Boussinesq) near field
     contact     the complementarity solve with torque balance
     calculix/   CalculiX deck writer and runner (the cross-check)
+    background  a call in a daemon thread, its value or exception handed back (the pair's two bodies)
 """

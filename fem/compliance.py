@@ -33,6 +33,7 @@ import scipy.sparse as sp
 
 from ltca.geometry.cylindrical import arc_length, helical_flank
 
+from .background import Background
 from .elastic import assemble_stiffness
 from .fillet import fillet_points, fillet_size
 from .loads import patch_loads, patch_quadrature
@@ -280,38 +281,13 @@ def pair_compliance(profiles, specs, cache_dir=None, progress=None) -> tuple[Bod
     """
     (p1, p2), (s1, s2) = profiles, specs
     job = BodyMeshJob(body_spec(p2, s2), cache_dir)
-    second = _Background(lambda: body_compliance(p2, s2, cache_dir, progress, mesh=job.result()))
     try:
-        second.start()
+        second = Background(lambda: body_compliance(p2, s2, cache_dir, progress, mesh=job.result()), "ltca-body")
         body1 = body_compliance(p1, s1, cache_dir, progress)
         body2 = second.result()
     finally:
         job.cancel()
     return body1, body2
-
-
-class _Background:
-    """A call run in a daemon thread (an interrupted run does not wait for it); :meth:`result` joins it and
-    returns its value or raises its exception."""
-
-    def __init__(self, call) -> None:
-        self._call, self._value, self._error = call, None, None
-        self._thread = threading.Thread(target=self._run, name="ltca-body", daemon=True)
-
-    def _run(self) -> None:
-        try:
-            self._value = self._call()
-        except BaseException as exc:       # handed to the caller by result()
-            self._error = exc
-
-    def start(self) -> None:
-        self._thread.start()
-
-    def result(self):
-        self._thread.join()
-        if self._error is not None:
-            raise self._error
-        return self._value
 
 
 def flank_compliance(spec, mesh, support: str, flanks: list, s_grid: np.ndarray, z_grid: np.ndarray,

@@ -20,6 +20,8 @@ from typing import Any, Callable
 
 import numpy as np
 
+from .fem.background import Background
+
 __all__ = ["solve_positions", "thread_count"]
 
 
@@ -72,60 +74,52 @@ def solve_positions(n: int, solve: Callable[[int, Any], Any], line_of: Callable[
         store.dirty = True
     lock = threading.Lock()
     stop = threading.Event()
-    computed = [0]
+    computed = 0
 
     def keep(k: int, result) -> None:
+        nonlocal computed
         with lock:
+            if store is not None and store.dirty:   # the interrupted run's log without a torn last line
+                store.rewrite_log(lines + [x for x in records if x is not None])
+                store.dirty = False
             results[k] = result
             if logged:
                 records[k] = line_of(k, result)
             if store is not None:
-                if store.dirty:     # the interrupted run's log: the positions taken over, without a torn last line
-                    store.rewrite_log(lines + [x for x in records if x is not None and x is not records[k]])
-                    store.dirty = False
                 store.save(it, k, result, records[k])
                 store.computed += 1
-            computed[0] += 1
+            computed += 1
             if done is not None:
                 done(k, result)
 
     def run(ks: np.ndarray) -> None:
-        warm = start(int(ks[0])) if start is not None else None
-        for k in ks.tolist():
-            if stop.is_set():
-                return
-            if old[k] is None:
-                keep(k, solve(k, warm))
-            elif done is not None:
-                with lock:
-                    done(k, old[k])
-            warm = results[k]
+        try:
+            warm = start(int(ks[0])) if start is not None else None
+            for k in ks.tolist():
+                if stop.is_set():
+                    return
+                if old[k] is None:
+                    keep(k, solve(k, warm))
+                elif done is not None:
+                    with lock:
+                        done(k, old[k])
+                warm = results[k]
+        except BaseException:
+            stop.set()          # the other runs end after their current position
+            raise
 
     runs = [ks for ks in np.array_split(np.arange(n), max(1, min(int(threads), n))) if len(ks)]
-    errors: list[BaseException] = []
-
-    def guarded(ks: np.ndarray) -> None:
-        try:
-            run(ks)
-        except BaseException as exc:        # handed to the calling thread
-            errors.append(exc)
-            stop.set()
-
-    others = [threading.Thread(target=guarded, args=(ks,), name="ltca-positions", daemon=True) for ks in runs[1:]]
-    for t in others:
-        t.start()
+    others = [Background(lambda ks=ks: run(ks), "ltca-positions") for ks in runs[1:]]
     try:
         if runs:
             run(runs[0])
     except BaseException:
-        stop.set()          # the other runs end after their current position
-        raise
-    finally:
         for t in others:
             t.join()
-    if errors:
-        raise errors[0]
+        raise
+    for t in others:
+        t.result()
     lines.extend(records)
-    if store is not None and computed[0] and (len(runs) > 1 or taken):
+    if store is not None and computed and (len(runs) > 1 or taken):
         store.rewrite_log(lines)            # finished out of order, or after positions taken over: in order
     return results

@@ -77,13 +77,13 @@ def cycle_positions(n: int, z1: int) -> np.ndarray:
 
 
 def analyse_torque(lm, phi: np.ndarray, torque_nm: float, progress=None, store=None, it: int = 0,
-                   lines: list | None = None, threads: int = 1) -> list[BevelPosition]:
+                   lines: list | None = None) -> list[BevelPosition]:
     """The loaded contact at the pinion angles ``phi`` under |torque_nm| (N m) on the model's flank.
 
     ``progress`` (a callable) receives a line per position; ``store`` (:class:`ltca.outputs.PositionStore`) keeps
-    each finished position and takes over those an interrupted run finished (torque index ``it``); ``threads`` runs
-    of consecutive positions are solved side by side (:func:`ltca.position_runs.solve_positions`)."""
-    from threadpoolctl import threadpool_limits
+    each finished position and takes over those an interrupted run finished (torque index ``it``). The positions run
+    in order (:func:`ltca.position_runs.solve_positions` in one run: two gained nothing, the gap evaluation holds the
+    GIL)."""
     t0 = time.perf_counter()
     count = [0]
 
@@ -97,9 +97,8 @@ def analyse_torque(lm, phi: np.ndarray, torque_nm: float, progress=None, store=N
         return {"torque_nm": torque_nm, "phi1_deg": float(np.degrees(res.phi1)), "te_loaded_arcsec": -res.te / ARCSEC,
                 "max_pressure_mpa": float(res.max_pressure), "torque_residual": float(res.torque_residual)}
 
-    with threadpool_limits(limits=1, user_api="blas"):
-        return solve_positions(len(phi), lambda k, warm: solve_position(lm, float(phi[k]), abs(torque_nm) * 1e3),
-                               line, store=store, it=it, lines=lines, threads=threads, done=done)
+    return solve_positions(len(phi), lambda k, warm: solve_position(lm, float(phi[k]), abs(torque_nm) * 1e3), line,
+                           store=store, it=it, lines=lines, done=done)
 
 
 @dataclass(frozen=True)

@@ -114,7 +114,7 @@ class _Start:
 
 
 def solve_cycle(lm: LoadedModel, sm: SatelliteModel, phis: np.ndarray, torque: float, store=None, it: int = 0,
-                lines: list | None = None, progress=None, threads: int = 1) -> list:
+                lines: list | None = None, progress=None) -> list:
     """Drive-direction contact (:class:`ltca.cylindrical.loaded.PositionResult`) at each position phi
     (roll = phi, :mod:`.model`) under ``torque`` (N mm, > 0), warm-started along the cycle.
 
@@ -122,9 +122,8 @@ def solve_cycle(lm: LoadedModel, sm: SatelliteModel, phis: np.ndarray, torque: f
     first contact (half the backlash) plus a single-pair deflection. ``store`` (:class:`ltca.outputs.PositionStore`)
     keeps each finished position (torque index ``it``) and gives back those an interrupted run finished: a position
     taken over is the next one's warm start, as it was, so a resumed cycle is the uninterrupted one bit for bit.
-    ``lines`` receives a record per position; ``progress`` (a callable) a line per position; ``threads`` runs of
-    consecutive positions are solved side by side, each from its own first start
-    (:func:`ltca.position_runs.solve_positions`)."""
+    ``lines`` receives a record per position; ``progress`` (a callable) a line per position
+    (:func:`ltca.position_runs.solve_positions` in one run: its 6 positions gained nothing from two)."""
     rb1, b = lm.model.pinion.r_base, lm.model.face_width
 
     def start(k: int) -> _Start:
@@ -143,4 +142,4 @@ def solve_cycle(lm: LoadedModel, sm: SatelliteModel, phis: np.ndarray, torque: f
             progress(f"{torque * 1e-3:g} N m: position {count[0]}/{len(phis)}  p_max {res.max_pressure:7.0f} MPa")
 
     return solve_positions(len(phis), lambda k, warm: solve_position(lm, float(phis[k]), float(torque), warm=warm),
-                           line, store=store, it=it, lines=lines, threads=threads, start=start, done=done)
+                           line, store=store, it=it, lines=lines, start=start, done=done)
